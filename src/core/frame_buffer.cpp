@@ -1,0 +1,78 @@
+#include "core/frame_buffer.hpp"
+
+#include "filmgrain/error.hpp"
+
+namespace filmgrain {
+
+PixelFormat parse_pix_fmt(const std::string& name) {
+    struct Entry { const char* name; ChromaFormat c; int bd; };
+    static const Entry kTable[] = {
+        {"gray", ChromaFormat::k400, 8},        {"gray10le", ChromaFormat::k400, 10},
+        {"gray12le", ChromaFormat::k400, 12},   {"gray16le", ChromaFormat::k400, 16},
+        {"yuv420p", ChromaFormat::k420, 8},     {"yuv420p10le", ChromaFormat::k420, 10},
+        {"yuv420p12le", ChromaFormat::k420, 12},{"yuv420p16le", ChromaFormat::k420, 16},
+        {"yuv422p", ChromaFormat::k422, 8},     {"yuv422p10le", ChromaFormat::k422, 10},
+        {"yuv422p12le", ChromaFormat::k422, 12},{"yuv422p16le", ChromaFormat::k422, 16},
+        {"yuv444p", ChromaFormat::k444, 8},     {"yuv444p10le", ChromaFormat::k444, 10},
+        {"yuv444p12le", ChromaFormat::k444, 12},{"yuv444p16le", ChromaFormat::k444, 16},
+    };
+    for (const auto& e : kTable)
+        if (name == e.name) return {e.c, e.bd};
+    throw Error(ErrorCode::kInvalidArgument,
+                "pix_fmt '" + name +
+                    "' is not supported (allowed: gray, yuv420p, yuv422p, yuv444p and their 10le/12le/16le forms)");
+}
+
+std::string pix_fmt_name(const PixelFormat& f) {
+    std::string base = f.chroma == ChromaFormat::k400   ? "gray"
+                       : f.chroma == ChromaFormat::k420 ? "yuv420p"
+                       : f.chroma == ChromaFormat::k422 ? "yuv422p"
+                                                        : "yuv444p";
+    if (f.bit_depth == 8) return base;
+    return base + std::to_string(f.bit_depth) + "le";
+}
+
+std::size_t FrameBuffer::frame_bytes(int width, int height, PixelFormat fmt) {
+    std::size_t bps = fmt.bit_depth > 8 ? 2 : 1, total = 0;
+    for (int p = 0; p < num_planes(fmt.chroma); p++)
+        total += std::size_t(plane_width(fmt.chroma, p, width)) * plane_height(fmt.chroma, p, height) * bps;
+    return total;
+}
+
+FrameBuffer::FrameBuffer(int width, int height, PixelFormat fmt) : width_(width), height_(height), fmt_(fmt) {
+    if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "frame size " + std::to_string(width) + "x" + std::to_string(height) +
+                        " is out of range (allowed 1..65536 in each dimension)");
+    if (fmt.bit_depth < 8 || fmt.bit_depth > 16)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("bit_depth", fmt.bit_depth, 8, 16));
+    std::size_t bps = fmt.bit_depth > 8 ? 2 : 1, off = 0;
+    for (int p = 0; p < num_planes(fmt.chroma); p++) {
+        offsets_[p] = off;
+        off += std::size_t(plane_width(fmt.chroma, p, width)) * plane_height(fmt.chroma, p, height) * bps;
+    }
+    bytes_.assign(off, 0);
+}
+
+std::size_t FrameBuffer::plane_bytes(int p) const {
+    std::size_t bps = fmt_.bit_depth > 8 ? 2 : 1;
+    return std::size_t(plane_width(fmt_.chroma, p, width_)) * plane_height(fmt_.chroma, p, height_) * bps;
+}
+
+FrameView FrameBuffer::view() {
+    FrameView v;
+    v.format = fmt_.chroma;
+    v.bit_depth = fmt_.bit_depth;
+    v.width = width_;
+    v.height = height_;
+    int bps = fmt_.bit_depth > 8 ? 2 : 1;
+    for (int p = 0; p < num_planes(fmt_.chroma); p++) {
+        v.planes[p].data = bytes_.data() + offsets_[p];
+        v.planes[p].width = plane_width(fmt_.chroma, p, width_);
+        v.planes[p].height = plane_height(fmt_.chroma, p, height_);
+        v.planes[p].stride = std::ptrdiff_t(v.planes[p].width) * bps;
+    }
+    return v;
+}
+
+}  // namespace filmgrain
