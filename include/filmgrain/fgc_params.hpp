@@ -1,0 +1,51 @@
+// The film grain characteristics SEI message (payloadType 19) as signalled,
+// named after its syntax elements (H.274 / VSEI 8.5, H.265 D.2.20, H.264 D.1.21).
+// Nothing here is inferred or converted: that is src/fgc/params_resolution's job.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace filmgrain {
+
+enum class FgcCodec : int { kAvc = 0, kHevc = 1, kVvc = 2 };
+
+struct FgcIntensityInterval {
+    int intensity_interval_lower_bound = 0;  // u(8)
+    int intensity_interval_upper_bound = 0;  // u(8)
+    // comp_model_value[c][i][0..num_model_values_minus1]; se(v). Only the signalled entries are valid.
+    std::array<int, 6> comp_model_value{};
+};
+
+struct FgcComponentModel {
+    bool comp_model_present_flag = false;
+    int num_model_values_minus1 = 0;  // u(3), 0..5
+    std::vector<FgcIntensityInterval> intervals;  // num_intensity_intervals_minus1 + 1 entries when present
+};
+
+struct FgcParams {
+    bool film_grain_characteristics_cancel_flag = false;
+    int film_grain_model_id = 0;  // u(2): 0 frequency filtering, 1 auto-regression
+    bool separate_colour_description_present_flag = false;
+    int film_grain_bit_depth_luma_minus8 = 0;    // u(3)
+    int film_grain_bit_depth_chroma_minus8 = 0;  // u(3)
+    bool film_grain_full_range_flag = false;
+    int film_grain_colour_primaries = 2;
+    int film_grain_transfer_characteristics = 2;
+    int film_grain_matrix_coeffs = 2;
+    int blending_mode_id = 0;   // u(2): 0 additive, 1 multiplicative
+    int log2_scale_factor = 0;  // u(4)
+    std::array<FgcComponentModel, 3> comp;
+    // H.265/H.266: persistence_flag; H.264: repetition_period (ue(v), 0..16384).
+    bool film_grain_characteristics_persistence_flag = true;
+    int film_grain_characteristics_repetition_period = 1;
+};
+
+// The picture identifiers the FGC seed derivation needs. They travel with each
+// frame; nothing about them is kept in global state.
+struct FgcPictureIds {
+    int poc = 0;         // PicOrderCnt of the picture (H.264: TopFieldOrderCnt for frames)
+    int idr_pic_id = 0;  // H.264 idr_pic_id of the latest IDR picture; 0 elsewhere
+};
+
+}  // namespace filmgrain
