@@ -1,0 +1,70 @@
+// Noise application of AV1 spec 7.18.3.5: the scaled noise is added to each
+// sample and the result clipped, with chroma scaling driven by a mix of the
+// co-located luma and the chroma sample itself.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+
+#include "av1/scaling_lookup.hpp"
+
+namespace filmgrain::av1 {
+
+struct ClipLimits {
+    int min_value = 0;
+    int max_luma = 255;
+    int max_chroma = 255;
+};
+
+// Restricted range is 16..235 for luma and 16..240 for chroma (at 8 bits,
+// shifted up for higher depths). With MC_IDENTITY (matrix_coefficients == 0)
+// the "chroma" planes carry R/B colour channels, which share luma's range, so
+// the chroma limit is 235 as well.
+ClipLimits clip_limits(bool clip_to_restricted_range, int bit_depth, int matrix_coefficients);
+
+// How a chroma sample picks its scaling index (the `merged` value of the spec).
+struct ChromaScalingIndex {
+    bool from_luma = false;  // chroma_scaling_from_luma: use the luma average
+    int mult = 0;            // cb_mult - 128
+    int luma_mult = 0;       // cb_luma_mult - 128
+    int offset = 0;          // cb_offset - 256
+};
+
+inline int round2_signed(int x, int n) { return (x + (1 << (n - 1))) >> n; }
+
+// One luma row: out = clip(src + Round2(scale(src) * noise, scaling_shift)).
+template <typename Pixel>
+void blend_luma_row(const Pixel* src, Pixel* dst, const int16_t* noise, int width, const ScalingLookup& scaling,
+                    int scaling_shift, int min_value, int max_value) {
+    for (int x = 0; x < width; ++x) {
+        const int orig = src[x];
+        const int n = round2_signed(scaling(orig) * noise[x], scaling_shift);
+        dst[x] = static_cast<Pixel>(std::clamp(orig + n, min_value, max_value));
+    }
+}
+
+// One chroma row. `luma` is the clean (pre-grain) luma row co-sited with this
+// chroma row; with horizontal subsampling the two luma samples are averaged,
+// the right one clamped to the picture (odd widths repeat the last column).
+template <typename Pixel>
+void blend_chroma_row(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise,
+                      int width, int subsampling_x, const ChromaScalingIndex& index, const ScalingLookup& scaling,
+                      int scaling_shift, int bit_depth, int min_value, int max_value) {
+    const int pixel_max = (1 << bit_depth) - 1;
+    for (int x = 0; x < width; ++x) {
+        const int lx = x << subsampling_x;
+        int average_luma = luma[lx];
+        if (subsampling_x) average_luma = (average_luma + luma[std::min(lx + 1, luma_width - 1)] + 1) >> 1;
+        const int orig = src[x];
+        int merged;
+        if (index.from_luma) {
+            merged = average_luma;
+        } else {
+            const int combined = average_luma * index.luma_mult + orig * index.mult;
+            merged = std::clamp((combined >> 6) + index.offset * (1 << (bit_depth - 8)), 0, pixel_max);
+        }
+        const int n = round2_signed(scaling(merged) * noise[x], scaling_shift);
+        dst[x] = static_cast<Pixel>(std::clamp(orig + n, min_value, max_value));
+    }
+}
+
+}  // namespace filmgrain::av1

@@ -1,0 +1,110 @@
+// AV1 spec 7.18.3.3 (generate grain process).
+#include "av1/grain_template_generation.hpp"
+
+#include <algorithm>
+
+#include "av1/gaussian_sequence.hpp"
+#include "av1/random_number.hpp"
+
+namespace filmgrain::av1 {
+namespace {
+
+// Round2 with an arithmetic shift, as the spec defines it for signed values.
+inline int round2(int x, int n) { return n == 0 ? x : (x + (1 << (n - 1))) >> n; }
+
+// Grain is kept in a signed range one bit wider than 8-bit video at the
+// frame's bit depth: [-128 << (bd-8), (128 << (bd-8)) - 1].
+struct GrainRange {
+    int min, max;
+};
+inline GrainRange grain_range(int bit_depth) {
+    const int ctr = 128 << (bit_depth - 8);
+    return {-ctr, ctr - 1};
+}
+
+// Fills a template with scaled Gaussian numbers. The Gaussian sequence has
+// 12-bit magnitude; shifting by 12 - BitDepth brings it to the frame's bit depth,
+// and grain_scale_shift lowers the grain further.
+void fill_white_noise(GrainTemplate& t, uint16_t seed, bool enabled, int bit_depth, int grain_scale_shift) {
+    const int shift = 12 - bit_depth + grain_scale_shift;
+    RandomNumberGenerator rng(seed);
+    for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+            const int g = enabled ? kGaussianSequence[static_cast<std::size_t>(rng.get(11))] : 0;
+            t.ref(y, x) = static_cast<int16_t>(round2(g, shift));
+        }
+}
+
+}  // namespace
+
+GrainTemplate generate_luma_template(const Av1FilmGrainParams& p, int bit_depth) {
+    GrainTemplate t{kLumaTemplateWidth, kLumaTemplateHeight,
+                    std::vector<int16_t>(static_cast<std::size_t>(kLumaTemplateWidth) * kLumaTemplateHeight)};
+    const bool enabled = p.num_y_points > 0;
+    fill_white_noise(t, luma_template_seed(p.grain_seed), enabled, bit_depth, p.grain_scale_shift);
+    if (!enabled) return t;
+
+    // Causal AR filter over the already-filtered neighbours: rows above (full
+    // width 2*lag+1) and the samples to the left on the current row, in raster
+    // order. The coefficients are listed in that same scan order.
+    const int lag = p.ar_coeff_lag;
+    const int shift = p.ar_coeff_shift_minus_6 + 6;
+    const GrainRange r = grain_range(bit_depth);
+    for (int y = kArPadding; y < t.height; ++y)
+        for (int x = kArPadding; x < t.width - kArPadding; ++x) {
+            int sum = 0, pos = 0;
+            for (int dy = -lag; dy <= 0; ++dy)
+                for (int dx = -lag; dx <= lag; ++dx) {
+                    if (dy == 0 && dx == 0) break;
+                    sum += (p.ar_coeffs_y_plus_128[static_cast<std::size_t>(pos++)] - 128) * t.at(y + dy, x + dx);
+                }
+            t.ref(y, x) = static_cast<int16_t>(std::clamp(t.at(y, x) + round2(sum, shift), r.min, r.max));
+        }
+    return t;
+}
+
+GrainTemplate generate_chroma_template(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
+                                       int subsampling_y, const GrainTemplate& luma) {
+    const int w = subsampling_x ? kSubsampledTemplateWidth : kLumaTemplateWidth;
+    const int h = subsampling_y ? kSubsampledTemplateHeight : kLumaTemplateHeight;
+    GrainTemplate t{w, h, std::vector<int16_t>(static_cast<std::size_t>(w) * h)};
+
+    const int num_points = plane == 1 ? p.num_cb_points : p.num_cr_points;
+    const bool enabled = num_points > 0 || p.chroma_scaling_from_luma;
+    const uint16_t seed = plane == 1 ? cb_template_seed(p.grain_seed) : cr_template_seed(p.grain_seed);
+    fill_white_noise(t, seed, enabled, bit_depth, p.grain_scale_shift);
+    if (!enabled) return t;
+
+    const auto& coeffs = plane == 1 ? p.ar_coeffs_cb_plus_128 : p.ar_coeffs_cr_plus_128;
+    const int lag = p.ar_coeff_lag;
+    const int shift = p.ar_coeff_shift_minus_6 + 6;
+    const GrainRange r = grain_range(bit_depth);
+    for (int y = kArPadding; y < t.height; ++y)
+        for (int x = kArPadding; x < t.width - kArPadding; ++x) {
+            int sum = 0, pos = 0;
+            for (int dy = -lag; dy <= 0; ++dy)
+                for (int dx = -lag; dx <= lag; ++dx) {
+                    if (dy == 0 && dx == 0) {
+                        // The last coefficient couples chroma grain to the luma
+                        // grain at the co-located position (averaged over the
+                        // subsampled luma samples), so that chroma grain can
+                        // correlate with luma grain. Absent without luma grain.
+                        if (p.num_y_points > 0) {
+                            int luma_sum = 0;
+                            const int ly = ((y - kArPadding) << subsampling_y) + kArPadding;
+                            const int lx = ((x - kArPadding) << subsampling_x) + kArPadding;
+                            for (int i = 0; i <= subsampling_y; ++i)
+                                for (int j = 0; j <= subsampling_x; ++j) luma_sum += luma.at(ly + i, lx + j);
+                            luma_sum = round2(luma_sum, subsampling_x + subsampling_y);
+                            sum += luma_sum * (coeffs[static_cast<std::size_t>(pos)] - 128);
+                        }
+                        break;
+                    }
+                    sum += (coeffs[static_cast<std::size_t>(pos++)] - 128) * t.at(y + dy, x + dx);
+                }
+            t.ref(y, x) = static_cast<int16_t>(std::clamp(t.at(y, x) + round2(sum, shift), r.min, r.max));
+        }
+    return t;
+}
+
+}  // namespace filmgrain::av1

@@ -1,0 +1,45 @@
+// AV1 spec 7.18.3.4 (scaling lookup initialization) and scale_lut() of 7.18.3.5.
+#include "av1/scaling_lookup.hpp"
+
+namespace filmgrain::av1 {
+
+ScalingLookup::ScalingLookup(const int* point_value, const int* point_scaling, int count, int bit_depth)
+    : bit_depth_(bit_depth), lut8_(256, 0), full_(static_cast<std::size_t>(1) << bit_depth, 0) {
+    if (count > 0) {
+        // Constant before the first point and after the last one.
+        for (int x = 0; x < point_value[0]; ++x) lut8_[static_cast<std::size_t>(x)] = static_cast<uint8_t>(point_scaling[0]);
+        // Between points: a 16.16 fixed-point slope with a rounded reciprocal of
+        // the run, so the result is integer-exact across implementations.
+        for (int i = 0; i + 1 < count; ++i) {
+            const int delta_y = point_scaling[i + 1] - point_scaling[i];
+            const int delta_x = point_value[i + 1] - point_value[i];
+            const int delta = delta_y * ((65536 + (delta_x >> 1)) / delta_x);
+            for (int x = 0; x < delta_x; ++x) {
+                const int v = point_scaling[i] + ((x * delta + 32768) >> 16);
+                lut8_[static_cast<std::size_t>(point_value[i] + x)] = static_cast<uint8_t>(v);
+            }
+        }
+        for (int x = point_value[count - 1]; x < 256; ++x)
+            lut8_[static_cast<std::size_t>(x)] = static_cast<uint8_t>(point_scaling[count - 1]);
+    }
+
+    // Above 8 bits the table is indexed by the top 8 bits and the low bits
+    // interpolate linearly towards the next entry (the last entry has no
+    // successor and is used as is).
+    const int shift = bit_depth - 8;
+    for (int index = 0; index < (1 << bit_depth); ++index) {
+        const int x = index >> shift;
+        const int rem = index - (x << shift);
+        int v;
+        if (shift == 0 || x == 255) {
+            v = lut8_[static_cast<std::size_t>(x)];
+        } else {
+            const int start = lut8_[static_cast<std::size_t>(x)];
+            const int end = lut8_[static_cast<std::size_t>(x + 1)];
+            v = start + (((end - start) * rem + (1 << (shift - 1))) >> shift);
+        }
+        full_[static_cast<std::size_t>(index)] = static_cast<uint8_t>(v);
+    }
+}
+
+}  // namespace filmgrain::av1
