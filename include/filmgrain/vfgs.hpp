@@ -1,0 +1,62 @@
+// The Versatile Film Grain (VFGS) flavour of the FGC SEI film grain model:
+// bit-exact with InterDigital's VersatileFilmGrain reference (ISO/IEC TR
+// 23002-9 clause 7.5 / Annex B.2.2), for FGC SEI input.
+//
+// Supported as the reference: 8- and 10-bit; 4:2:0 with luma and chroma grain;
+// 4:2:2 and 4:4:4 with luma grain only; model 0 (frequency filtering) and
+// model 1 (auto-regression, luma only); width > 128, height >= 128, even sizes
+// for subsampled chroma. Anything else throws filmgrain::Error(kUnsupported).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "filmgrain/fgc_params.hpp"
+#include "filmgrain/frame.hpp"
+
+namespace filmgrain::vfgs {
+
+struct Options {
+    // VFGS -r: the LFSR starts at (seed << 1). Absent (or 0, as in VFGS) =
+    // the reference's default state 0xDEADBEEF.
+    std::optional<uint32_t> seed;
+    // VFGS --gain (percent, >= 0): a global grain strength outside the SEI.
+    int gain_percent = 100;
+    // VFGS --outdepth: 0 = same as the input; 8 = round 10-bit output to 8 bit.
+    int output_bit_depth = 0;
+    // TR 23002-9 7.2.4.2 / 7.5.4 pattern interpolation, compiled out of the
+    // reference. Off = bit-exact with the reference.
+    bool pattern_interpolation = false;
+};
+
+class Synthesizer {
+public:
+    // Throws Error(kInvalidArgument) for a negative gain or an output bit depth other than 0/8/10.
+    explicit Synthesizer(const Options& options);
+    ~Synthesizer();
+    Synthesizer(Synthesizer&&) noexcept;
+    Synthesizer& operator=(Synthesizer&&) noexcept;
+    Synthesizer(const Synthesizer&) = delete;
+    Synthesizer& operator=(const Synthesizer&) = delete;
+
+    // Installs a parameter set from the next frame on. Validates what does not
+    // depend on the picture format (throws Error naming field, value and range);
+    // format-dependent checks run at the next apply(). The random state is not
+    // touched: VFGS never reseeds. film_grain_characteristics_cancel_flag = 1
+    // turns grain off (apply() then copies) - VFGS itself never sees a cancel.
+    void set_params(const FgcParams& params);
+
+    // Adds grain to one frame, in output order. dst has src's size and format,
+    // and src's bit depth or Options::output_bit_depth; it may alias src when
+    // the bit depths match. Throws when no parameters were set.
+    void apply(const FrameView& src, const FrameView& dst);
+
+    // The LFSR state the next frame's first block stripe starts from.
+    uint32_t lfsr_state() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace filmgrain::vfgs

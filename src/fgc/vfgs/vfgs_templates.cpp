@@ -1,0 +1,179 @@
+// Grain templates of the VFGS flavour: see vfgs_templates.hpp.
+#include "fgc/vfgs/vfgs_templates.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "fgc/vfgs/vfgs_parameters.hpp"
+#include "fgc/vfgs/vfgs_random.hpp"
+#include "fgc/vfgs/vfgs_tables.hpp"
+
+namespace filmgrain::vfgs {
+
+namespace {
+
+int clip127(int v) { return std::clamp(v, -127, 127); }
+
+// Inverse 2-D DCT of an n x n coefficient block (n = 64, or 32 using the even
+// rows of the 64-point matrix, which are the 32-point basis scaled by sqrt 2).
+// Pass 1 (vertical): X[j][i] = (sum_k M[k][j] * B[k][i] + r1) >> s1.
+// Pass 2 (horizontal): out[j][i] = clip((sum_k X[j][k] * M[k][i] + 256) >> 9).
+// The 32-point chroma case uses s1 = 8 to compensate the sqrt 2 of the
+// even-row basis once; that is VFGS's normalisation, kept for bit-exactness.
+void inverse_dct(const std::vector<int>& coef, int n, Template& out) {
+    const int step = kTemplateSize / n;  // 1 for 64, 2 for 32
+    const int s1 = (n == kTemplateSize) ? 9 : 8;
+    std::vector<int> x(static_cast<size_t>(n) * n);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            int acc = 1 << (s1 - 1);
+            for (int k = 0; k < n; ++k) acc += kDct2Matrix64[k * step][j] * coef[k * n + i];
+            x[j * n + i] = acc >> s1;
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            int acc = 256;
+            for (int k = 0; k < n; ++k) acc += x[j * n + k] * kDct2Matrix64[k * step][i];
+            out[j][i] = static_cast<int8_t>(clip127(acc >> 9));
+        }
+}
+
+// Fills the low-frequency corner of an n x n coefficient block with Gaussian
+// values, `group` at a time along the horizontal frequency. The LFSR steps once
+// per group over the whole block, so the values a given frequency receives do
+// not depend on the cut-offs (a lower cut-off only removes coefficients).
+Template frequency_template(int n, int group, uint32_t seed, int h_cutoff, int v_cutoff) {
+    const int kmax = group * (h_cutoff + 1);
+    const int lmax = group * (v_cutoff + 1);
+    std::vector<int> coef(static_cast<size_t>(n) * n, 0);
+    uint32_t r = seed;
+    for (int l = 0; l < n; ++l)
+        for (int k = 0; k < n; k += group) {
+            if (k < kmax && l < lmax)
+                for (int q = 0; q < group; ++q) coef[l * n + k + q] = kGaussianLut[(r + q) & 2047u];
+            r = lfsr_next(r);
+        }
+    coef[0] = 0;  // no DC: the grain is zero-mean
+    Template t{};
+    inverse_dct(coef, n, t);
+    return t;
+}
+
+}  // namespace
+
+Template make_frequency_template_luma(int h_cutoff, int v_cutoff) {
+    return frequency_template(kTemplateSize, 4, kSeedLut[0], h_cutoff, v_cutoff);
+}
+
+Template make_frequency_template_chroma420(int h_cutoff, int v_cutoff) {
+    return frequency_template(kChromaTemplateSize, 2, kSeedLut[1], h_cutoff, v_cutoff);
+}
+
+Template make_ar_template_luma(const std::array<int, 6>& value, int log2_scale_factor) {
+    // Work buffer: 3 samples of filter support on the left/top/right, plus 6
+    // samples of warm-up so that the cropped part is away from the zero start.
+    constexpr int kW = 82, kH = 73, kMargin = 3, kCrop = 9;
+    const int L = log2_scale_factor;
+    const long long a = value[4];  // vertical aspect factor, 1 << L = isotropic
+    // Weights of the causal neighbours, in 1/2^L. 64-bit products: VFGS does
+    // not range-check value[4]; for in-range values this equals its int maths.
+    const int w_left = value[1];
+    const int w_top = static_cast<int>((value[1] * a) >> L);
+    const int w_diag = static_cast<int>((value[3] * a) >> L);
+    const int w_left2 = value[5];
+    const int w_top2 = static_cast<int>((value[5] * a * a) >> (2 * L));
+
+    std::vector<int> buf(static_cast<size_t>(kW) * kH, 0);
+    auto at = [&](int y, int x) { return buf[static_cast<size_t>(y) * kW + x]; };
+    uint32_t r = kSeedLut[0];
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            int g = 0;
+            if (y >= kMargin && x >= kMargin && x < kW - kMargin) {
+                const int sum = w_left * at(y, x - 1) + w_left2 * at(y, x - 2) + w_top * at(y - 1, x) +
+                                w_diag * (at(y - 1, x - 1) + at(y - 1, x + 1)) + w_top2 * at(y - 2, x);
+                g = (sum + (1 << (L - 1))) >> L;
+            }
+            g += (kGaussianLut[r & 2047u] + 1) >> 1;  // half-amplitude noise
+            r = lfsr_next(r);
+            buf[static_cast<size_t>(y) * kW + x] = clip127(g);
+        }
+    Template t{};
+    for (int y = 0; y < kTemplateSize; ++y)
+        for (int x = 0; x < kTemplateSize; ++x) t[y][x] = static_cast<int8_t>(at(kCrop + y, kCrop + x));
+    return t;
+}
+
+namespace {
+
+const std::array<int, 6>& row_values(const ResolvedParams& r, int c, int k) {
+    return r.comp[c].intervals[static_cast<size_t>(k)].value;
+}
+
+bool slot_matches(const TemplatePools& pools, const TemplatePool& pool, const ResolvedParams& r, int s,
+                  const std::array<int, 6>& cand) {
+    if (s < pool.count) {
+        const auto& v = row_values(r, pool.slot[s].component, pool.slot[s].interval);
+        return std::equal(v.begin() + 1, v.end(), cand.begin() + 1);
+    }
+    return pools.empty_slot_matches_luma_row0 &&
+           std::equal(pools.empty_slot_values.begin(), pools.empty_slot_values.end(), cand.begin() + 1);
+}
+
+int search(const TemplatePools& pools, const TemplatePool& pool, const ResolvedParams& r,
+           const std::array<int, 6>& cand) {
+    for (int s = 0; s < kMaxTemplates; ++s)
+        if (slot_matches(pools, pool, r, s, cand)) return s;
+    return -1;
+}
+
+}  // namespace
+
+TemplatePools select_template_pools(const ResolvedParams& r) {
+    TemplatePools pools;
+    if (r.comp[0].present && !r.comp[0].intervals.empty()) {
+        pools.empty_slot_matches_luma_row0 = true;
+        const auto& v = r.comp[0].intervals[0].value;
+        std::copy(v.begin(), v.begin() + 5, pools.empty_slot_values.begin());
+    }
+    for (int c = 0; c < 3; ++c) {
+        if (!r.comp[c].present) continue;
+        TemplatePool& pool = (c == 0) ? pools.luma : pools.chroma;
+        for (int k = 0; k < static_cast<int>(r.comp[c].intervals.size()); ++k) {
+            if (search(pools, pool, r, row_values(r, c, k)) >= 0) continue;  // shares a template
+            if (pool.count >= kMaxTemplates) continue;                      // pool full: dropped
+            // Insert keeping the slots sorted by lower bound (stable), so that
+            // neighbouring intensity ranges get neighbouring slots.
+            const int lower = r.comp[c].intervals[static_cast<size_t>(k)].lower;
+            int s = pool.count;
+            while (s > 0 && pool.slot[s - 1].lower > lower) {
+                pool.slot[s] = pool.slot[s - 1];
+                --s;
+            }
+            pool.slot[s] = PoolSlot{c, k, lower};
+            ++pool.count;
+        }
+    }
+    return pools;
+}
+
+int find_template_slot(const TemplatePools& pools, const ResolvedParams& r, int component, int interval) {
+    const TemplatePool& pool = (component == 0) ? pools.luma : pools.chroma;
+    return search(pools, pool, r, row_values(r, component, interval));
+}
+
+void build_templates(const ResolvedParams& r, const TemplatePools& pools, TemplateBank& bank) {
+    for (int s = 0; s < pools.luma.count; ++s) {
+        const auto& v = row_values(r, pools.luma.slot[s].component, pools.luma.slot[s].interval);
+        bank.luma[s] = (r.model_id == 0) ? make_frequency_template_luma(v[1], v[2])
+                                         : make_ar_template_luma(v, r.log2_scale_factor);
+    }
+    // Chroma grain exists only for model 0 in 4:2:0 (validated before).
+    for (int s = 0; s < pools.chroma.count; ++s) {
+        const auto& v = row_values(r, pools.chroma.slot[s].component, pools.chroma.slot[s].interval);
+        bank.chroma[s] = make_frequency_template_chroma420(v[1], v[2]);
+    }
+}
+
+}  // namespace filmgrain::vfgs
