@@ -10,6 +10,20 @@ namespace filmgrain {
 
 enum class FgcCodec : int { kAvc = 0, kHevc = 1, kVvc = 2 };
 
+// Which bit-exact behaviour of the frequency-filtering model to reproduce.
+//  kRdd5: SMPTE RDD 5 (HM-2020 Dolby implementation; FFmpeg >= 6.1 h274.c): RDD 5 matrix,
+//         seed from POC + (idr_pic_id << 5), 8x8 adaptation at every picture size.
+//  kVtm:  HM/VTM master (JVET-X0048): VVC DCT-2 matrix, POC-only seed, 8/16/32 blocks by size.
+//  kVfgs: InterDigital VersatileFilmGrain (TR 23002-9 7.5): sample-based adaptation.
+enum class FgcFlavour : int { kRdd5 = 0, kVtm = 1, kVfgs = 2 };
+
+// How an FGC SEI's persistence is honoured for pictures that carry no SEI.
+//  kReference: as HM does it: a picture without an SEI reuses the last SEI whatever its
+//              persistence flag / repetition period (invalid or cancelled -> no grain).
+//  kSemantic:  as the SEI semantics say: persistence_flag = 0 (H.264: repetition_period = 0)
+//              applies to the current picture only.
+enum class FgcPersistence : int { kReference = 0, kSemantic = 1 };
+
 struct FgcIntensityInterval {
     int intensity_interval_lower_bound = 0;  // u(8)
     int intensity_interval_upper_bound = 0;  // u(8)

@@ -1,0 +1,16 @@
+#include "fgc/deblocking.hpp"
+
+namespace filmgrain::fgc {
+
+void deblock_stripe_vertical_edges(int32_t* grain, int stride, int rows, int width, int block_size) {
+    for (int y = 0; y < rows; y++) {
+        int32_t* row = grain + std::ptrdiff_t(y) * stride;
+        for (int e = block_size; e < width; e += block_size) {
+            const int32_t l1 = row[e - 2], l0 = row[e - 1], r0 = row[e], r1 = row[e + 1];
+            row[e] = (l0 + (r0 << 1) + r1) >> 2;
+            row[e - 1] = (l1 + (l0 << 1) + r0) >> 2;
+        }
+    }
+}
+
+}  // namespace filmgrain::fgc

@@ -1,0 +1,134 @@
+#include "fgc/fgc_synthesizer.hpp"
+
+#include "filmgrain/error.hpp"
+
+namespace filmgrain {
+
+struct FgcSynthesizer::Active {
+    FgcParams params;
+    FgcCodec codec = FgcCodec::kHevc;
+    bool used_once = false;
+    // resolution cache, valid for one picture format
+    bool resolved_ok = false;
+    fgc::PictureFormat format{};
+    std::optional<fgc::ResolvedFgc> resolved;
+    ErrorCode error_code = ErrorCode::kOk;
+    std::string error;
+    bool have_format = false;
+};
+
+FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
+    if (options.flavour == FgcFlavour::kVfgs)
+        throw Error(ErrorCode::kInvalidArgument, "FgcSynthesizer handles the rdd5 and vtm flavours; vfgs has its own");
+    if (options.block_size != 0 && options.block_size != 8 && options.block_size != 16 && options.block_size != 32)
+        throw Error(ErrorCode::kInvalidArgument, "block_size = " + std::to_string(options.block_size) +
+                                                     " is not allowed (allowed 0 = flavour default, 8, 16, 32)");
+}
+
+FgcSynthesizer::~FgcSynthesizer() = default;
+
+void FgcSynthesizer::receive_sei(const FgcParams& params, FgcCodec codec) {
+    pending_ = params;
+    pending_codec_ = codec;
+}
+
+void FgcSynthesizer::reset() {
+    pending_.reset();
+    active_.reset();
+}
+
+int FgcSynthesizer::templates_built() const { return synthesis_ ? synthesis_->templates().built_count() : 0; }
+
+namespace {
+bool persists_beyond_picture(const FgcParams& p, FgcCodec codec) {
+    if (codec == FgcCodec::kAvc) return p.film_grain_characteristics_repetition_period != 0;
+    return p.film_grain_characteristics_persistence_flag;
+}
+
+void copy_frame(const FrameView& src, const FrameView& dst) {
+    for (int c = 0; c < src.plane_count(); c++) fgc::copy_plane(src.planes[c], dst.planes[c], src.bytes_per_sample());
+}
+
+void check_frame(const FrameView& src, const FrameView& dst) {
+    if (src.width <= 0 || src.height <= 0)
+        throw Error(ErrorCode::kInvalidArgument, "frame size " + std::to_string(src.width) + "x" +
+                                                     std::to_string(src.height) + " is empty");
+    if (src.bit_depth < 8 || src.bit_depth > 16)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("bit_depth", src.bit_depth, 8, 16));
+    if (dst.width != src.width || dst.height != src.height || dst.bit_depth != src.bit_depth || dst.format != src.format)
+        throw Error(ErrorCode::kInvalidArgument, "output frame does not match the input frame's size, bit depth or format");
+    for (int c = 0; c < src.plane_count(); c++) {
+        const int pw = plane_width(src.format, c, src.width), ph = plane_height(src.format, c, src.height);
+        if (!src.planes[c].data || !dst.planes[c].data)
+            throw Error(ErrorCode::kInvalidArgument, "plane " + std::to_string(c) + " has no data pointer");
+        if (src.planes[c].width != pw || src.planes[c].height != ph || dst.planes[c].width != pw ||
+            dst.planes[c].height != ph)
+            throw Error(ErrorCode::kInvalidArgument, "plane " + std::to_string(c) + " is " +
+                                                         std::to_string(src.planes[c].width) + "x" +
+                                                         std::to_string(src.planes[c].height) + ", expected " +
+                                                         std::to_string(pw) + "x" + std::to_string(ph));
+    }
+}
+}  // namespace
+
+FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids) {
+    check_frame(src, dst);
+    FgcFrameResult result;
+    if (pending_) {
+        active_ = std::make_unique<Active>();
+        active_->params = *pending_;
+        active_->codec = pending_codec_;
+        pending_.reset();
+    } else if (active_ && options_.persistence == FgcPersistence::kSemantic &&
+               !persists_beyond_picture(active_->params, active_->codec)) {
+        // The SEI applied to its own picture only (H.274 persistence semantics).
+        active_.reset();
+    }
+    if (!active_) {
+        copy_frame(src, dst);
+        return result;
+    }
+    result.sei_in_force = true;
+    Active& a = *active_;
+    fgc::PictureFormat fmt{src.format, src.bit_depth, src.width, src.height};
+    if (!a.have_format || a.format.chroma != fmt.chroma || a.format.bit_depth != fmt.bit_depth ||
+        a.format.width != fmt.width || a.format.height != fmt.height) {
+        a.have_format = true;
+        a.format = fmt;
+        a.resolved.reset();
+        a.error.clear();
+        a.error_code = ErrorCode::kOk;
+        try {
+            a.resolved = fgc::resolve_fgc_params(a.params, options_.flavour, fmt);
+        } catch (const Error& e) {
+            a.error_code = e.code();
+            a.error = e.what();
+        }
+    }
+    if (!a.resolved) {
+        if (!options_.passthrough_invalid) throw Error(a.error_code, a.error);
+        copy_frame(src, dst);
+        result.message = "film grain not applied: " + a.error;
+        return result;
+    }
+    if (a.resolved->cancelled) {
+        copy_frame(src, dst);
+        result.message = "film grain cancelled (film_grain_characteristics_cancel_flag = 1)";
+        return result;
+    }
+    const int coded_w = options_.coded_width ? options_.coded_width : (src.width + 15) & ~15;
+    const int coded_h = options_.coded_height ? options_.coded_height : (src.height + 15) & ~15;
+    const int bs = options_.block_size ? options_.block_size
+                                       : fgc::default_block_size(options_.flavour, coded_w, coded_h);
+    if (!synthesis_ || synthesis_->block_size() != bs)
+        synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(options_.flavour, bs);
+    int32_t pic_offset = ids.poc;
+    if (options_.flavour == FgcFlavour::kRdd5) pic_offset = ids.poc + int32_t(uint32_t(ids.idr_pic_id) << 5);
+    synthesis_->apply(*a.resolved, src, dst, pic_offset);
+    bool any = false;
+    for (int c = 0; c < src.plane_count(); c++) any |= a.resolved->comp[c].present;
+    result.grain_applied = any;
+    return result;
+}
+
+}  // namespace filmgrain

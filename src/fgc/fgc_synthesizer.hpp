@@ -1,0 +1,65 @@
+// The per-context FGC state a decoder keeps across pictures: the SEI in force, its
+// persistence and cancellation, the validated parameters for the current picture format,
+// and the template cache. One instance per stream; instances share nothing.
+#pragma once
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "fgc/fgc_synthesis.hpp"
+#include "fgc/params_resolution.hpp"
+#include "filmgrain/fgc_params.hpp"
+#include "filmgrain/frame.hpp"
+
+namespace filmgrain {
+
+struct FgcOptions {
+    FgcFlavour flavour = FgcFlavour::kRdd5;
+    FgcPersistence persistence = FgcPersistence::kReference;
+    int block_size = 0;  // 0: the flavour's own choice; 8, 16 or 32 to force one
+    // vtm: HM picks the block size from the *coded* picture size (SPS
+    // pic_width/height_in_luma_samples), which a decoded picture does not carry. 0 means
+    // the picture size rounded up to a multiple of 16, as encoders with a 16x16 minimum
+    // coding block (x265's fast presets, which made the goldens) code it: a 1920x1080
+    // picture coded as 1920x1088 takes the 16x16 mode. Decoders should pass the SPS size.
+    int coded_width = 0;
+    int coded_height = 0;
+    // Invalid parameter sets: false -> apply() throws; true -> the picture passes through
+    // untouched, as the reference decoders output it, and the result carries the reason.
+    bool passthrough_invalid = false;
+};
+
+struct FgcFrameResult {
+    bool grain_applied = false;
+    bool sei_in_force = false;  // some SEI (valid or not) governs this picture
+    std::string message;         // why no grain was added, when that is notable
+};
+
+class FgcSynthesizer {
+public:
+    explicit FgcSynthesizer(const FgcOptions& options);
+    ~FgcSynthesizer();
+    FgcSynthesizer(const FgcSynthesizer&) = delete;
+    FgcSynthesizer& operator=(const FgcSynthesizer&) = delete;
+
+    // An FGC SEI that arrived with the next picture to be applied.
+    void receive_sei(const FgcParams& params, FgcCodec codec = FgcCodec::kHevc);
+    // A new coded layer-wise video sequence: nothing persists across it.
+    void reset();
+
+    // Synthesizes one picture in output order. dst may alias src.
+    FgcFrameResult apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids);
+
+    const FgcOptions& options() const { return options_; }
+    int templates_built() const;
+
+private:
+    struct Active;
+    FgcOptions options_;
+    std::optional<FgcParams> pending_;
+    FgcCodec pending_codec_ = FgcCodec::kHevc;
+    std::unique_ptr<Active> active_;
+    std::unique_ptr<fgc::FgcFrameSynthesis> synthesis_;
+};
+
+}  // namespace filmgrain

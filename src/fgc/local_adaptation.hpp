@@ -1,0 +1,44 @@
+// Local adaptation (TR 23002-9 7.3.2): the average of the decoded samples of each block
+// selects the intensity interval, hence the scale factor and the template.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+
+#include "filmgrain/frame.hpp"
+
+namespace filmgrain::fgc {
+
+// RDD 5 (HM-2020, FFmpeg): mean over the samples of the block that lie inside the plane
+// (partial blocks at the right and bottom edges average fewer samples), then >> (bd - 8).
+template <typename Pixel>
+int block_average_inside(const PlaneView& plane, int x0, int y0, int size, int bit_depth) {
+    const int w = std::min(size, plane.width - x0), h = std::min(size, plane.height - y0);
+    uint32_t sum = 0;
+    for (int y = 0; y < h; y++) {
+        const Pixel* row = plane.row<const Pixel>(y0 + y) + x0;
+        for (int x = 0; x < w; x++) sum += row[x];
+    }
+    uint32_t avg = (sum / uint32_t(w * h)) >> (bit_depth - 8);
+    return int(std::min<uint32_t>(avg, 255));
+}
+
+// VTM/HM master: sum over a whole block of the picture padded by edge replication (HM
+// synthesizes on the coded picture, whose padding replicates the edge), shifted by
+// log2(size*size) + bd - 8.
+template <typename Pixel>
+int block_average_replicated(const PlaneView& plane, int x0, int y0, int size, int bit_depth) {
+    const int log2_area = size == 8 ? 6 : size == 16 ? 8 : 10;
+    uint64_t sum = 0;
+    const bool inside = x0 + size <= plane.width && y0 + size <= plane.height;
+    for (int y = 0; y < size; y++) {
+        const Pixel* row = plane.row<const Pixel>(std::min(y0 + y, plane.height - 1));
+        if (inside) {
+            for (int x = 0; x < size; x++) sum += row[x0 + x];
+        } else {
+            for (int x = 0; x < size; x++) sum += row[std::min(x0 + x, plane.width - 1)];
+        }
+    }
+    return int(std::min<uint64_t>(sum >> (log2_area + bit_depth - 8), 255));
+}
+
+}  // namespace filmgrain::fgc

@@ -1,0 +1,62 @@
+// Raw planar YUV and YUV4MPEG2 (Y4M) streams, read and written frame by frame so that a
+// file of any length is processed in constant memory. "-" is stdin / stdout.
+#pragma once
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "core/frame_buffer.hpp"
+
+namespace filmgrain {
+
+struct VideoInfo {
+    int width = 0;
+    int height = 0;
+    PixelFormat format;
+    int fps_num = 25, fps_den = 1;
+    bool y4m = false;
+    std::string y4m_extra;  // interlacing / aspect / colour-range tags to carry over
+};
+
+class VideoReader {
+public:
+    // Raw input needs `raw_info` (size and format); Y4M input (".y4m" or a YUV4MPEG2
+    // header) describes itself and `raw_info` is ignored except for fps when absent.
+    VideoReader(const std::string& path, const VideoInfo& raw_info, bool force_raw = false);
+    ~VideoReader();
+    const VideoInfo& info() const { return info_; }
+    // false at a clean end of file; throws Error(kIo) on a truncated frame.
+    bool read(FrameBuffer& frame);
+    int frames_read() const { return frames_; }
+
+private:
+    void parse_y4m_header();
+    std::FILE* f_ = nullptr;
+    bool owns_ = false;
+    std::string path_;
+    VideoInfo info_;
+    int frames_ = 0;
+};
+
+class VideoWriter {
+public:
+    // Writes to a temporary file beside `path`; commit() renames it into place. Without
+    // commit() (an error) the temporary is removed and `path` is never created.
+    VideoWriter(const std::string& path, const VideoInfo& info, bool y4m);
+    ~VideoWriter();
+    void write(const FrameBuffer& frame);
+    void commit();
+
+private:
+    std::FILE* f_ = nullptr;
+    bool to_stdout_ = false;
+    std::string path_, tmp_path_;
+    VideoInfo info_;
+    bool y4m_;
+    bool committed_ = false;
+};
+
+bool has_y4m_extension(const std::string& path);
+std::string y4m_colorspace_tag(const PixelFormat& f);
+
+}  // namespace filmgrain

@@ -1,0 +1,32 @@
+// Shared pieces of the `filmgrain` subcommands: option parsing helpers and error exits.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "core/frame_buffer.hpp"
+#include "filmgrain/fgc_params.hpp"
+#include "io/video_file.hpp"
+
+namespace filmgrain::cli {
+
+// Raw-video options shared by every command that reads YUV.
+struct RawVideoOptions {
+    std::string size;     // WxH
+    std::string pix_fmt = "yuv420p";
+    std::string fps = "25";
+    VideoInfo to_info() const;  // throws Error on a malformed value
+    void add_to(CLI::App* app);
+};
+
+FgcFlavour parse_flavour(const std::string& s);
+std::string flavour_name(FgcFlavour f);
+
+void register_apply(CLI::App& app);
+void register_demo(CLI::App& app, bool* ran_default);
+int run_demo();
+
+// Writes a PNG with the clean and the grainy crop side by side (OpenImageIO), if available.
+// Returns false with a reason when the build has no OpenImageIO.
+bool write_preview_png(const std::string& path, const FrameBuffer& clean, const FrameBuffer& grainy, std::string* why);
+
+}  // namespace filmgrain::cli

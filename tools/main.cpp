@@ -1,0 +1,28 @@
+// The `filmgrain` command. Each subcommand lives in its own file (cmd_*.cpp).
+#include <cstdio>
+#include <exception>
+
+#include "cli_common.hpp"
+#include "filmgrain/error.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{"filmgrain: film grain synthesis bit-exact with the FGC SEI (RDD 5, HM/VTM) and AV1 references.\n"
+                 "Without a subcommand it runs the demo: grain on a built-in clip, output and PNG preview in ./out/"};
+    app.require_subcommand(0, 1);
+    bool ran_default = false;
+    filmgrain::cli::register_apply(app);
+    filmgrain::cli::register_demo(app, &ran_default);
+    try {
+        app.parse(argc, argv);
+        if (app.get_subcommands().empty()) return filmgrain::cli::run_demo();
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const filmgrain::Error& e) {
+        std::fprintf(stderr, "filmgrain: error: %s\n", e.what());
+        return e.code() == filmgrain::ErrorCode::kInvalidArgument ? 2 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "filmgrain: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
