@@ -1,11 +1,16 @@
 // `filmgrain apply`: add grain to a raw YUV or Y4M file from parameters (JSON, SEI payloads).
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
 
+#include "av1/av1_synthesis.hpp"
 #include "cli_common.hpp"
 #include "fgc/fgc_synthesizer.hpp"
+#include "filmgrain/vfgs.hpp"
+#include "metadata/aom_grain_table.hpp"
+#include "metadata/av1_params_json.hpp"
 #include "filmgrain/error.hpp"
 #include "io/xz_file.hpp"
 #include "metadata/fgc_sei.hpp"
@@ -25,6 +30,13 @@ struct ApplyOptions {
     std::string coded_size;
     int threads = 0;
     bool quiet = false;
+    // vfgs flavour: the reference tool's own options
+    std::optional<uint32_t> seed;
+    int gain = 100;
+    std::string output_pix_fmt;
+    // AV1
+    int matrix_coefficients = -1;
+    int clip_to_restricted_range = -1;
     RawVideoOptions raw;
 };
 
@@ -79,6 +91,112 @@ private:
     std::vector<FgcParams> fixed_;
 };
 
+bool ends_with(const std::string& s, const char* suffix) {
+    const std::size_t n = std::strlen(suffix);
+    return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+// The per-frame loop shared by every model: read, synthesize, write; the output file
+// appears only when every frame succeeded.
+template <typename Synthesize>
+int process_video(const ApplyOptions& o, const VideoInfo& out_override, bool override_format, Synthesize&& synth,
+                  const char* model) {
+    VideoReader reader(o.input, o.raw.to_info());
+    VideoInfo out_info = reader.info();
+    if (override_format) out_info.format = out_override.format;
+    const bool y4m_out = o.output != "-" ? has_y4m_extension(o.output) : reader.info().y4m;
+    VideoWriter writer(o.output, out_info, y4m_out);
+    FrameBuffer in, out;
+    int k = 0;
+    while (reader.read(in)) {
+        if (out.width() != in.width() || out.height() != in.height() || out.format().chroma != out_info.format.chroma ||
+            out.format().bit_depth != out_info.format.bit_depth)
+            out = FrameBuffer(in.width(), in.height(), out_info.format);
+        synth(k, reader.info(), in, out);
+        writer.write(out);
+        k++;
+    }
+    if (k == 0) throw Error(ErrorCode::kIo, "input '" + o.input + "' holds no frame");
+    writer.commit();
+    if (!o.quiet && o.output != "-")
+        std::fprintf(stderr, "filmgrain: %d frame(s) written to %s (%s)\n", k, o.output.c_str(), model);
+    return 0;
+}
+
+int run_av1(const ApplyOptions& o) {
+    std::vector<Av1FrameParams> frames;
+    std::optional<AomGrainTable> table;
+    if (ends_with(o.params, ".tbl")) {
+        table = read_aom_grain_table(o.params);
+    } else {
+        const std::vector<uint8_t> bytes = read_whole_file(o.params);
+        nlohmann::json j;
+        try {
+            j = nlohmann::json::parse(bytes.begin(), bytes.end());
+        } catch (const nlohmann::json::parse_error& e) {
+            throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' is not valid JSON: " + e.what());
+        }
+        frames = av1_frame_params_from_json(j);
+        if (frames.empty()) throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' has no AV1 frame");
+    }
+    const bool single = frames.size() == 1;
+    return process_video(
+        o, {}, false,
+        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
+            Av1FilmGrainParams p;
+            int mc = o.matrix_coefficients;
+            if (table) {
+                // libaom tables are indexed by time in 10 MHz ticks
+                const int64_t ts = int64_t(k) * 10000000 * info.fps_den / info.fps_num;
+                const auto idx = table->find_index(ts);
+                if (!idx)
+                    throw Error(ErrorCode::kInvalidParams, "grain table '" + o.params + "' has no entry for frame " +
+                                                               std::to_string(k) + " (timestamp " + std::to_string(ts) +
+                                                               ")");
+                p = table->resolved_params(*idx);
+            } else {
+                const Av1FrameParams& fp = single ? frames[0] : frames.at(std::min<std::size_t>(k, frames.size() - 1));
+                if (!single && std::size_t(k) >= frames.size())
+                    throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' lists " +
+                                                               std::to_string(frames.size()) +
+                                                               " frames but the input has more");
+                p = fp.grain;
+                if (mc < 0 && fp.color) mc = fp.color->matrix_coefficients;
+            }
+            if (mc < 0) mc = 2;  // unspecified
+            // filmgrn1 tables cannot carry this flag (libaom's reader leaves it 0)
+            if (o.clip_to_restricted_range >= 0) p.clip_to_restricted_range = o.clip_to_restricted_range;
+            av1::apply_film_grain(p, in.view(), out.view(), mc);
+        },
+        "AV1 film grain");
+}
+
+int run_vfgs(const ApplyOptions& o, std::unique_ptr<FgcSource> source) {
+    vfgs::Options vo;
+    vo.seed = o.seed;
+    vo.gain_percent = o.gain;
+    VideoInfo out_override;
+    bool override_format = false;
+    if (!o.output_pix_fmt.empty()) {
+        out_override.format = parse_pix_fmt(o.output_pix_fmt);
+        override_format = true;
+        vo.output_bit_depth = out_override.format.bit_depth;
+    }
+    vfgs::Synthesizer synth(vo);
+    return process_video(
+        o, out_override, override_format,
+        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
+            if (override_format && out_override.format.chroma != info.format.chroma)
+                throw Error(ErrorCode::kInvalidArgument, "--output-pix-fmt " + o.output_pix_fmt +
+                                                             " must keep the input's chroma format (" +
+                                                             pix_fmt_name(info.format) + ")");
+            FgcPictureIds ids;
+            if (auto sei = source->sei_for(k, ids)) synth.set_params(*sei);
+            synth.apply(in.view(), out.view());
+        },
+        "FGC SEI, flavour vfgs");
+}
+
 int run_apply(const ApplyOptions& o) {
     const FgcFlavour flavour = parse_flavour(o.flavour);
     if (o.on_invalid != "error" && o.on_invalid != "passthrough")
@@ -92,14 +210,16 @@ int run_apply(const ApplyOptions& o) {
 
     std::unique_ptr<FgcSource> source;
     if (!o.params.empty()) {
+        if (ends_with(o.params, ".tbl")) return run_av1(o);
         ParamsFile pf = load_params_file(o.params);
-        if (!pf.has_fgc() && pf.has_av1())
-            throw Error(ErrorCode::kUnsupported, "AV1 film grain parameters are not handled by this build yet");
+        if (!pf.has_fgc() && pf.has_av1()) return run_av1(o);
         source = std::make_unique<ParamsFileSource>(std::move(pf));
     } else {
         source = std::make_unique<SeiFileSource>(o.sei, codec);
     }
-    if (flavour == FgcFlavour::kVfgs) throw Error(ErrorCode::kUnsupported, "--flavour vfgs is not available in this build yet");
+    if (flavour == FgcFlavour::kVfgs) return run_vfgs(o, std::move(source));
+    if (o.gain != 100 || o.seed || !o.output_pix_fmt.empty())
+        throw Error(ErrorCode::kInvalidArgument, "--seed, --gain and --output-pix-fmt belong to --flavour vfgs");
 
     FgcOptions fo;
     fo.flavour = flavour;
@@ -144,7 +264,7 @@ void register_apply(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("apply", "add film grain to a raw YUV or Y4M file");
     sub->add_option("--input,-i", o->input, "input file (raw planar YUV or Y4M), - for stdin")->required();
     sub->add_option("--output,-o", o->output, "output file (.y4m writes Y4M), - for stdout")->required();
-    sub->add_option("--params,-p", o->params, "parameter file: JSON (FGC SEI syntax elements or per-frame list)");
+    sub->add_option("--params,-p", o->params, "parameter file: JSON (FGC SEI syntax elements, AV1 film_grain_params, or a per-frame list) or a libaom grain table (.tbl)");
     sub->add_option("--sei", o->sei,
                     "raw FGC SEI payload(s) (payloadType 19 body); one file for every picture, several for "
                     "pictures 0,1,..., or a printf pattern such as frame%d.fgc.bin (missing = no SEI)");
@@ -162,6 +282,15 @@ void register_apply(CLI::App& app) {
                     "vtm: the stream's coded picture size WxH (SPS), which picks HM's block size "
                     "(default: the picture size rounded up to a multiple of 16)");
     sub->add_option("--threads", o->threads, "worker threads (0: all cores)");
+    sub->add_option("--seed", o->seed, "vfgs: the reference's -r seed (absent: its default state 0xDEADBEEF)");
+    sub->add_option("--gain", o->gain, "vfgs: the reference's --gain in percent")->capture_default_str();
+    sub->add_option("--output-pix-fmt", o->output_pix_fmt, "vfgs: output format, e.g. yuv420p for 8-bit output of 10-bit input");
+    sub->add_option("--matrix-coefficients", o->matrix_coefficients,
+                    "AV1: the stream's matrix_coefficients (0 = identity changes the chroma clip); default from the "
+                    "parameter file, else 2");
+    sub->add_option("--clip-to-restricted-range", o->clip_to_restricted_range,
+                    "AV1: override clip_to_restricted_range (0/1); libaom grain tables cannot carry it")
+        ->check(CLI::Range(0, 1));
     sub->add_flag("--quiet,-q", o->quiet, "no messages on stderr except errors");
     o->raw.add_to(sub);
     sub->callback([o]() {
