@@ -1,4 +1,4 @@
-// VFGS parameter set-up (TR 23002-9 7.5.2 / Annex B.2.2): value completion,
+// VFGS parameter set-up (TR 23002-9 clause 7.5 / Annex B.2.2): value completion,
 // 4:2:0 chroma conversion, --gain, LUTs and validation messages.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// VFGS random state (TR 23002-9 7.5.3 / Annex B.2.2): the bit-reversed RDD 5
+// VFGS random state (TR 23002-9 clause 7.5 / Annex B.2.2): the bit-reversed RDD 5
 // LFSR, seeding, block bit fields and the stripe/frame state progression.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// VFGS per-sample synthesis (TR 23002-9 7.5.4 / 7.5.5 / Annex B.2.2): overlap
+// VFGS per-sample synthesis (TR 23002-9 clause 7.5 / Annex B.2.2): overlap
 // and deblocking arithmetic, scaling, clipping incl. the 10-bit 1020 maximum,
 // --outdepth 8, format checks and pattern interpolation.
 #include <gtest/gtest.h>

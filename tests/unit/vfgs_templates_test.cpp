@@ -1,4 +1,4 @@
-// VFGS templates (TR 23002-9 7.5.3 / Annex B.2.2): frequency-filtering
+// VFGS templates (TR 23002-9 clause 7.5 / Annex B.2.2): frequency-filtering
 // templates through the VVC DCT-2 matrix, AR templates, template pools.
 #include <gtest/gtest.h>
 
