@@ -145,7 +145,7 @@ ResolvedParams resolve_params(const FgcParams& p, ChromaFormat format, int gain_
             ri.upper = iv.intensity_interval_upper_bound;
             ri.value = complete_model_values(iv.comp_model_value, cm.num_model_values_minus1 + 1, r.model_id,
                                              p.log2_scale_factor);
-            // 4:2:0 chroma conversion (TR 23002-9 7.5.2): the chroma template is
+            // 4:2:0 chroma conversion (TR 23002-9 clause 7.5): the chroma template is
             // half the size, so the same spatial cut-off is twice the index
             // (clipped to 2..14), and the scale is halved.
             if (c > 0 && r.model_id == 0 && format == ChromaFormat::k420) {

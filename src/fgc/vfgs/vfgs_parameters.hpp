@@ -1,4 +1,4 @@
-// Parameter set-up of the VFGS flavour (TR 23002-9 clause 7.5.2, Annex B.2.2):
+// Parameter set-up of the VFGS flavour (TR 23002-9 clause 7.5, Annex B.2.2):
 // from the FGC SEI syntax (FgcParams) to the values the VFGS synthesis uses.
 //
 //  1. validation (what VFGS's checks and asserts accept),
@@ -80,6 +80,10 @@ std::array<ComponentLuts, 3> build_luts(const ResolvedParams& r, const TemplateP
 // around every intensity where the template index changes between two
 // adjacent intervals, the two templates are blended over up to 16 intensity
 // steps, so that the grain texture changes gradually with intensity.
+// VFGS has the per-sample blend (P*(16-f) + Pn*f + 8) >> 4 behind a disabled
+// switch but never fills in a weight; the ramp shape here (half-width
+// min(8, half of either interval), weight 8/16 at the boundary) is this
+// implementation's choice. Scale values are not interpolated.
 void add_interpolation_ramps(const ResolvedParams& r, std::array<ComponentLuts, 3>& luts);
 
 // Right shift applied after scaling: log2_scale_factor - model_id + 6 - (bitdepth - 8).

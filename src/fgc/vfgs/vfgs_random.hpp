@@ -1,4 +1,4 @@
-// Random state of the VFGS flavour (TR 23002-9 clause 7.5.3, Annex B.2.2).
+// Random state of the VFGS flavour (TR 23002-9 clause 7.5, Annex B.2.2).
 //
 // VFGS drives everything from one 32-bit LFSR: the RDD 5 generator with its bit
 // order reversed (the feedback enters at bit 31 and the register shifts right),

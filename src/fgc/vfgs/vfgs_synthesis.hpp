@@ -1,5 +1,5 @@
 // Per-sample grain synthesis and blending of the VFGS flavour
-// (TR 23002-9 clause 7.5.4 / 7.5.5, Annex B.2.2).
+// (TR 23002-9 clause 7.5, Annex B.2.2).
 //
 // VFGS works line by line on 16x16 luma blocks (4:2:0 chroma 8x8): every
 // sample picks its template from the LUT of its own intensity (no block

@@ -1,4 +1,4 @@
-// Grain templates of the VFGS flavour (TR 23002-9 clause 7.5.3, Annex B.2.2).
+// Grain templates of the VFGS flavour (TR 23002-9 clause 7.5, Annex B.2.2).
 //
 // VFGS synthesises grain by copying 16x16 (chroma 8x8) pieces of a small set of
 // pre-computed 64x64 (4:2:0 chroma 32x32) templates, one per distinct set of
