@@ -179,3 +179,15 @@ TEST(VfgsTemplates, CbAndCrShareTheChromaPool) {
     EXPECT_EQ(pools.chroma.count, 2);
     EXPECT_EQ(find_template_slot(pools, r, 2, 0), find_template_slot(pools, r, 1, 1));
 }
+
+TEST(VfgsTemplates, EmptySlotQuirkMirrorsTheReference) {
+    // VFGS compares a candidate's values [1..5] with an empty pool slot as if
+    // that slot held luma interval 0's values [0..4]. Row 1 below matches in
+    // that way, so it gets no slot of its own and its intensities point at the
+    // (stale) slot 1. Checked against the reference binary.
+    const ResolvedParams r = luma_rows(0, {{5, 5, 5, 0, 0, 0}, {100, 5, 5, 5, 0, 0}});
+    const TemplatePools pools = select_template_pools(r);
+    EXPECT_EQ(pools.luma.count, 1);
+    EXPECT_EQ(find_template_slot(pools, r, 0, 1), 1);
+    EXPECT_EQ(build_luts(r, pools)[0].tmpl[15], 1);
+}
