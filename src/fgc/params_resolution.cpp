@@ -129,7 +129,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                             std::to_string(iv.intensity_interval_lower_bound) + ", " +
                             std::to_string(iv.intensity_interval_upper_bound) + "] overlaps interval " +
                             std::to_string(rc.interval_of_intensity[v]) + " at intensity " + std::to_string(v) +
-                            " (intervals must not overlap)");
+                            " (allowed: intervals that do not overlap)");
                 rc.interval_of_intensity[v] = int16_t(i);
             }
             ResolvedInterval ri;
