@@ -6,6 +6,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "av1/av1_synthesis.hpp"
@@ -344,4 +345,39 @@ TEST(Av1Validation, SpecInferenceCases) {
     p.chroma_scaling_from_luma = 1;
     p.num_y_points = 0;
     EXPECT_EQ(error_message(p), "");
+}
+
+TEST(Av1Synthesis, ConcurrentStripesMatchSerial) {
+    const auto p = full_params();
+    for (int bd : {8, 10}) {
+        auto src = random_frame(333, 301, ChromaFormat::k420, bd, 99);
+        FrameBuffer serial(333, 301, src.format());
+        apply_film_grain(p, src.view(), serial.view(), 2);
+
+        const Av1SynthesisContext ctx(p, ChromaFormat::k420, bd, 333, 301, 2);
+        for (bool in_place : {false, true}) {
+            FrameBuffer out = in_place ? src : FrameBuffer(333, 301, src.format());
+            const FrameView in_view = in_place ? out.view() : src.view();
+            std::vector<std::thread> pool;
+            for (int t = 0; t < 4; ++t)
+                pool.emplace_back([&, t] {
+                    for (int s = t; s < ctx.stripe_count(); s += 4) ctx.apply_stripes(in_view, out.view(), s, s + 1);
+                });
+            for (auto& th : pool) th.join();
+            EXPECT_EQ(bytes_of(out), bytes_of(serial)) << "bd " << bd << " in_place " << in_place;
+        }
+    }
+}
+
+TEST(Av1Synthesis, StrideTooSmallIsRejected) {
+    auto f = random_frame(40, 8, ChromaFormat::k420, 8);
+    FrameView v = f.view();
+    v.planes[0].stride = 39;
+    try {
+        apply_film_grain(full_params(), v, v, 2);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
+        EXPECT_NE(std::string(e.what()).find("planes[0].stride = 39"), std::string::npos) << e.what();
+    }
 }
