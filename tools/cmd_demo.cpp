@@ -31,17 +31,17 @@ void make_builtin_frame(FrameBuffer& f, int k) {
         for (int y = 0; y < v.planes[c].height; y++) {
             uint8_t* row = v.planes[c].row<uint8_t>(y);
             for (int x = 0; x < v.planes[c].width; x++)
-                row[x] = uint8_t(128 + (c == 1 ? 1 : -1) * int(20.0 * x / v.planes[c].width));
+                row[x] = uint8_t(128 + (c == 1 ? -1 : 1) * int(8.0 * x / v.planes[c].width));
         }
 }
 
 FgcParams builtin_params() {
     FgcParams p;
-    p.log2_scale_factor = 5;
+    p.log2_scale_factor = 4;
     p.comp[0].comp_model_present_flag = true;
     p.comp[0].num_model_values_minus1 = 2;
     // stronger, coarser grain in the shadows; finer grain in the highlights
-    p.comp[0].intervals = {{0, 80, {110, 6, 6}}, {81, 170, {90, 8, 8}}, {171, 255, {70, 11, 11}}};
+    p.comp[0].intervals = {{0, 80, {160, 6, 6}}, {81, 170, {130, 8, 8}}, {171, 255, {100, 11, 11}}};
     for (int c = 1; c < 3; c++) {
         p.comp[c].comp_model_present_flag = true;
         p.comp[c].num_model_values_minus1 = 2;

@@ -10,7 +10,7 @@
 #include "core/md5.hpp"
 #include "io/xz_file.hpp"
 
-using namespace filmgrain::testing;
+using namespace filmgrain::test_support;
 namespace fs = std::filesystem;
 
 namespace {

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "av1/av1_synthesis.hpp"
+#include "conformance_case.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
 #include "io/xz_file.hpp"
@@ -27,69 +28,19 @@ using namespace filmgrain;
 
 namespace {
 
-std::vector<std::string> av1_cases() {
-    std::vector<std::string> out;
-    const fs::path root = fs::path(FILMGRAIN_SOURCE_DIR) / "conformance";
-    if (!fs::exists(root)) return out;
-    for (const auto& e : fs::directory_iterator(root))
-        if (e.is_directory() && e.path().filename().string().rfind("av1_", 0) == 0)
-            out.push_back(e.path().filename().string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
+std::vector<std::string> av1_cases() { return test_support::list_cases("av1_"); }
 
 enum class ParamSource { kCaseJson, kGrainTable };
 
-std::string first_difference(const FrameBuffer& got, const uint8_t* expected, int frame) {
-    const PixelFormat fmt = got.format();
-    const int bps = fmt.bit_depth > 8 ? 2 : 1;
-    for (int p = 0; p < num_planes(fmt.chroma); ++p) {
-        const int pw = plane_width(fmt.chroma, p, got.width()), ph = plane_height(fmt.chroma, p, got.height());
-        const uint8_t* a = got.bytes() + got.plane_offset(p);
-        const uint8_t* b = expected + got.plane_offset(p);
-        for (int y = 0; y < ph; ++y)
-            for (int x = 0; x < pw; ++x) {
-                const std::size_t o = (static_cast<std::size_t>(y) * pw + x) * bps;
-                const int va = bps == 2 ? a[o] | (a[o + 1] << 8) : a[o];
-                const int vb = bps == 2 ? b[o] | (b[o + 1] << 8) : b[o];
-                if (va != vb) {
-                    std::ostringstream s;
-                    s << "first difference: frame " << frame << " plane " << p << " x " << x << " y " << y
-                      << ": got " << va << ", expected " << vb;
-                    return s.str();
-                }
-            }
-    }
-    return "no sample difference (md5 mismatch elsewhere?)";
-}
-
 void run_case(const std::string& name, ParamSource source) {
-    const fs::path dir = fs::path(FILMGRAIN_SOURCE_DIR) / "conformance" / name;
-    std::ifstream jf(dir / "case.json");
-    ASSERT_TRUE(jf) << "cannot open case.json";
-    const nlohmann::json cj = nlohmann::json::parse(jf);
-    const int width = cj.at("width"), height = cj.at("height");
-    const PixelFormat fmt = parse_pix_fmt(cj.at("pix_fmt").get<std::string>());
-    const int frames = cj.at("frames");
-    const auto& info = cj.at("frames_info");
-    ASSERT_EQ(static_cast<int>(info.size()), frames);
-
-    const std::vector<uint8_t> input = read_xz_file((dir / "input.yuv.xz").string());
-    const std::size_t fbytes = FrameBuffer::frame_bytes(width, height, fmt);
-    ASSERT_EQ(input.size(), fbytes * static_cast<std::size_t>(frames));
-    std::vector<uint8_t> expected;
-    if (fs::exists(dir / "expected.yuv.xz")) {
-        expected = read_xz_file((dir / "expected.yuv.xz").string());
-        ASSERT_EQ(expected.size(), input.size());
-    }
-
-    const std::vector<Av1FrameParams> json_params = av1_frame_params_from_json(cj);
+    const test_support::ConformanceCase c = test_support::load_case(name);
+    const std::vector<Av1FrameParams> json_params = av1_frame_params_from_json(c.json);
     AomGrainTable table;
-    if (source == ParamSource::kGrainTable) table = read_aom_grain_table((dir / "grain.tbl").string());
+    if (source == ParamSource::kGrainTable) table = read_aom_grain_table((fs::path(c.dir) / "grain.tbl").string());
 
     int mismatches = 0;
-    for (int k = 0; k < frames; ++k) {
-        const auto& fi = info[static_cast<std::size_t>(k)];
+    for (int k = 0; k < c.frames; ++k) {
+        const auto& fi = c.frame_info(k);
         const int mc = fi.at("params").value("matrix_coefficients", 2);
         Av1FilmGrainParams p;
         if (source == ParamSource::kCaseJson) {
@@ -107,24 +58,22 @@ void run_case(const std::string& name, ParamSource source) {
                 << "frame " << k << ": grain.tbl and case.json disagree";
         }
 
-        FrameBuffer src(width, height, fmt), dst(width, height, fmt);
-        std::memcpy(src.bytes(), input.data() + fbytes * static_cast<std::size_t>(k), fbytes);
-        av1::apply_film_grain(p, src.view(), dst.view(), mc);
-        const std::string got = md5_hex(dst.bytes(), dst.byte_size());
+        const FrameBuffer src = c.input_frame(k);
+        FrameBuffer dst(c.width, c.height, c.format);
+        av1::apply_film_grain(p, const_cast<FrameBuffer&>(src).view(), dst.view(), mc);
 
         // The source must be untouched, and in-place must give the same result.
-        ASSERT_EQ(0, std::memcmp(src.bytes(), input.data() + fbytes * static_cast<std::size_t>(k), fbytes));
+        ASSERT_EQ(0, std::memcmp(src.bytes(), c.input.data() + c.frame_bytes() * static_cast<std::size_t>(k),
+                                 c.frame_bytes()));
         FrameBuffer inplace = src;
         av1::apply_film_grain(p, inplace.view(), inplace.view(), mc);
-        EXPECT_EQ(md5_hex(inplace.bytes(), inplace.byte_size()), got) << "frame " << k << ": in-place differs";
+        EXPECT_EQ(md5_hex(inplace.bytes(), inplace.byte_size()), md5_hex(dst.bytes(), dst.byte_size()))
+            << "frame " << k << ": in-place differs";
 
-        const std::string want = fi.at("expected_md5");
-        if (got != want) {
+        const std::string why = test_support::describe_mismatch(c, k, dst.bytes(), dst.byte_size());
+        if (!why.empty()) {
             ++mismatches;
-            std::string detail;
-            if (!expected.empty())
-                detail = first_difference(dst, expected.data() + fbytes * static_cast<std::size_t>(k), k);
-            ADD_FAILURE() << name << " frame " << k << ": md5 " << got << " != expected " << want << ". " << detail;
+            ADD_FAILURE() << why;
         }
     }
     EXPECT_EQ(mismatches, 0);

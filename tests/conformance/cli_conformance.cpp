@@ -12,7 +12,7 @@
 #include "io/xz_file.hpp"
 
 using namespace filmgrain;
-using namespace filmgrain::testing;
+using namespace filmgrain::test_support;
 namespace fs = std::filesystem;
 
 namespace {

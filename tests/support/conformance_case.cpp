@@ -13,7 +13,7 @@
 
 namespace fs = std::filesystem;
 
-namespace filmgrain::testing {
+namespace filmgrain::test_support {
 
 std::string conformance_dir() { return (fs::path(FILMGRAIN_SOURCE_DIR) / "conformance").string(); }
 
@@ -90,4 +90,4 @@ int run_command(const std::string& cmd, std::string* log) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-}  // namespace filmgrain::testing
+}  // namespace filmgrain::test_support

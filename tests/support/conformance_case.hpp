@@ -10,7 +10,7 @@
 
 #include "core/frame_buffer.hpp"
 
-namespace filmgrain::testing {
+namespace filmgrain::test_support {
 
 std::string conformance_dir();  // <repo>/conformance
 // Case folder names starting with `prefix`, sorted.
@@ -41,4 +41,4 @@ std::string describe_mismatch(const ConformanceCase& c, int frame, const uint8_t
 // Runs a command line; returns its exit status. Output goes to `log` when given.
 int run_command(const std::string& cmd, std::string* log = nullptr);
 
-}  // namespace filmgrain::testing
+}  // namespace filmgrain::test_support

@@ -1,14 +1,16 @@
 // Constant tables of the VFGS flavour (TR 23002-9 clause 7.5 / Annex B.2.2).
-// See vfgs_tables.cpp for where they come from and why VFGS keeps its own copy.
+// VersatileFilmGrain carries its own copies of the Gaussian table, the seed table and the
+// VVC 64-point DCT-2 matrix; they were compared entry by entry with the RDD 5 / HM tables
+// of src/fgc/fgc_tables and are identical, so the flavour uses those. What differs is how
+// VFGS indexes them (its bit-reversed LFSR, groups stepped outside the cut-offs too).
 #pragma once
-#include <array>
-#include <cstdint>
+#include "fgc/fgc_tables.hpp"
 
 namespace filmgrain::vfgs {
 
-extern const std::array<int8_t, 2048> kGaussianLut;
-extern const std::array<uint32_t, 256> kSeedLut;
+using fgc::kGaussianLut;
+using fgc::kSeedLut;
 // kDct2Matrix64[k][n]: k-th basis function (frequency), n-th sample.
-extern const std::array<std::array<int8_t, 64>, 64> kDct2Matrix64;
+inline constexpr const auto& kDct2Matrix64 = fgc::kVvcDct2_64;
 
 }  // namespace filmgrain::vfgs
