@@ -7,9 +7,7 @@ namespace filmgrain {
 struct FgcSynthesizer::Active {
     FgcParams params;
     FgcCodec codec = FgcCodec::kHevc;
-    bool used_once = false;
     // resolution cache, valid for one picture format
-    bool resolved_ok = false;
     fgc::PictureFormat format{};
     std::optional<fgc::ResolvedFgc> resolved;
     ErrorCode error_code = ErrorCode::kOk;
