@@ -1,0 +1,122 @@
+#include "physical/grain_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "physical/cell_random.hpp"
+
+namespace filmgrain::physical {
+
+namespace {
+int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+}  // namespace
+
+CellIntensity::CellIntensity(const FloatPlane& u, const GrainRadiusLaw& radius, double grey_epsilon,
+                             int cells_per_pixel, int px0, int py0, int px1, int py1) {
+    x0_ = std::clamp(px0, 0, u.width - 1);
+    x1_ = std::clamp(px1, 0, u.width - 1);
+    y0_ = std::clamp(py0, 0, u.height - 1);
+    y1_ = std::clamp(py1, 0, u.height - 1);
+    w_ = x1_ - x0_ + 1;
+    h_ = y1_ - y0_ + 1;
+    m_.resize(std::size_t(w_) * h_);
+    e_.resize(m_.size());
+    const double cell_area = 1.0 / (double(cells_per_pixel) * cells_per_pixel);
+    const double per_log = cell_area / (3.141592653589793 * radius.mean_square());
+    for (int y = 0; y < h_; y++)
+        for (int x = 0; x < w_; x++) {
+            double g = u.at(x0_ + x, y0_ + y);
+            if (!(g > 0)) g = 0;  // also maps NaN to black
+            g = std::min(g, 1.0 - grey_epsilon);
+            const double m = -std::log1p(-g) * per_log;
+            m_[std::size_t(y) * w_ + x] = m;
+            e_[std::size_t(y) * w_ + x] = std::exp(-m);
+        }
+}
+
+double CellIntensity::average_mean() const {
+    double s = 0;
+    for (double m : m_) s += m;
+    return s / double(m_.size());
+}
+
+bool CellIntensity::any_grain() const {
+    return std::any_of(m_.begin(), m_.end(), [](double m) { return m > 0; });
+}
+
+std::size_t CellIntensity::index(int px, int py) const {
+    px = std::clamp(px, x0_, x1_);
+    py = std::clamp(py, y0_, y1_);
+    return std::size_t(py - y0_) * w_ + std::size_t(px - x0_);
+}
+
+void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity, const GrainRadiusLaw& radius,
+                          int cells_per_pixel, uint64_t seed, std::vector<Grain>& out) {
+    const int px = int(std::clamp<int64_t>(floor_div(cx, cells_per_pixel), -1, 1 << 30));
+    const int py = int(std::clamp<int64_t>(floor_div(cy, cells_per_pixel), -1, 1 << 30));
+    const double e = intensity.exp_neg_mean(px, py);
+    if (e >= 1.0) return;
+    const double m = intensity.mean(px, py);
+    CellRandom rng(hash_coordinates(cx, cy, seed));
+    // Poisson count by inversion of the CDF.
+    const double t = rng.uniform();
+    int n = 0;
+    double p = e, cdf = e;
+    while (t > cdf && n < kMaxGrainsPerCell) {
+        n++;
+        p *= m / n;
+        cdf += p;
+        if (p < 1e-300 && cdf < t) break;  // t beyond the double precision of the CDF
+    }
+    const double inv_k = 1.0 / cells_per_pixel;
+    for (int i = 0; i < n; i++) {
+        const double gx = (double(cx) + rng.uniform()) * inv_k;
+        const double gy = (double(cy) + rng.uniform()) * inv_k;
+        const double r = radius.constant() ? radius.max_radius() : radius.radius_from_normal(rng.normal());
+        out.push_back({gx, gy, r * r});
+    }
+}
+
+GrainField::GrainField(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel,
+                       uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins)
+    : k_(cells_per_pixel) {
+    const double rm = radius.max_radius();
+    const int64_t cx0 = int64_t(std::floor((x0 - rm) * k_)), cx1 = int64_t(std::floor((x1 + rm) * k_));
+    const int64_t cy0 = int64_t(std::floor((y0 - rm) * k_)), cy1 = int64_t(std::floor((y1 + rm) * k_));
+    for (int64_t cy = cy0; cy <= cy1; cy++)
+        for (int64_t cx = cx0; cx <= cx1; cx++) generate_cell_grains(cx, cy, intensity, radius, cells_per_pixel, seed, grains_);
+    if (!build_bins) return;
+
+    bx0_ = int64_t(std::floor(x0 * k_));
+    by0_ = int64_t(std::floor(y0 * k_));
+    nbx_ = int64_t(std::floor(x1 * k_)) - bx0_ + 1;
+    nby_ = int64_t(std::floor(y1 * k_)) - by0_ + 1;
+    start_.assign(std::size_t(nbx_ * nby_) + 1, 0);
+    // A small pad so that a point on a bin edge, however it rounds, finds every grain that
+    // contains it in its own bin.
+    constexpr double kPad = 1e-7;
+    auto bin_range = [&](const Grain& g, int64_t& lx, int64_t& hx, int64_t& ly, int64_t& hy) {
+        const double r = std::sqrt(g.r2);
+        lx = std::max<int64_t>(int64_t(std::floor((g.x - r) * k_ - kPad)) - bx0_, 0);
+        hx = std::min<int64_t>(int64_t(std::floor((g.x + r) * k_ + kPad)) - bx0_, nbx_ - 1);
+        ly = std::max<int64_t>(int64_t(std::floor((g.y - r) * k_ - kPad)) - by0_, 0);
+        hy = std::min<int64_t>(int64_t(std::floor((g.y + r) * k_ + kPad)) - by0_, nby_ - 1);
+    };
+    for (const Grain& g : grains_) {
+        int64_t lx, hx, ly, hy;
+        bin_range(g, lx, hx, ly, hy);
+        for (int64_t by = ly; by <= hy; by++)
+            for (int64_t bx = lx; bx <= hx; bx++) start_[std::size_t(by * nbx_ + bx) + 1]++;
+    }
+    for (std::size_t i = 1; i < start_.size(); i++) start_[i] += start_[i - 1];
+    binned_.resize(start_.back());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (const Grain& g : grains_) {
+        int64_t lx, hx, ly, hy;
+        bin_range(g, lx, hx, ly, hy);
+        for (int64_t by = ly; by <= hy; by++)
+            for (int64_t bx = lx; bx <= hx; bx++) binned_[fill[std::size_t(by * nbx_ + bx)]++] = g;
+    }
+}
+
+}  // namespace filmgrain::physical

@@ -1,0 +1,75 @@
+// The grains of the Boolean model over a rectangle, generated cell by cell and binned.
+// Cells are squares of side 1/cells_per_pixel aligned on the input pixel grid, so each lies
+// in one input pixel and its grain count is Poisson(lambda(pixel) * cell area). A cell's
+// grains depend only on its coordinates and the seed (cell_random.hpp).
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/float_plane.hpp"
+#include "physical/grain_radius.hpp"
+
+namespace filmgrain::physical {
+
+struct Grain {
+    double x, y, r2;
+};
+
+// Per-input-pixel Poisson law of a cell's grain count, over a box of input pixels.
+class CellIntensity {
+public:
+    // Covers input pixels [px0, px1] x [py0, py1] (clamped to the picture; points outside
+    // take the nearest edge pixel).
+    CellIntensity(const FloatPlane& u, const GrainRadiusLaw& radius, double grey_epsilon, int cells_per_pixel,
+                  int px0, int py0, int px1, int py1);
+    // exp(-mean) and mean of the grain count of a cell lying in input pixel (px, py).
+    double exp_neg_mean(int px, int py) const { return e_[index(px, py)]; }
+    double mean(int px, int py) const { return m_[index(px, py)]; }
+    double average_mean() const;
+    bool any_grain() const;
+
+private:
+    std::size_t index(int px, int py) const;
+    int x0_, y0_, x1_, y1_, w_, h_;
+    std::vector<double> m_, e_;
+};
+
+// Largest Poisson count drawn for one cell; reached with probability < 1e-30 for every
+// allowed parameter set, it only bounds the loop.
+constexpr int kMaxGrainsPerCell = 4096;
+
+// Appends the grains of cell (cx, cy) to `out`.
+void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity, const GrainRadiusLaw& radius,
+                          int cells_per_pixel, uint64_t seed, std::vector<Grain>& out);
+
+// The grains that can cover any point of [x0, x1] x [y0, y1] (input-pixel units), binned on
+// the cell grid over that rectangle: a grain is listed in every bin its bounding square meets.
+class GrainField {
+public:
+    GrainField(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel, uint64_t seed,
+               double x0, double y0, double x1, double y1, bool build_bins);
+
+    const std::vector<Grain>& grains() const { return grains_; }
+    // Whether the point is inside some grain. The point must lie in the rectangle.
+    bool covered(double px, double py) const {
+        const int64_t bx = int64_t(std::floor(px * k_)) - bx0_, by = int64_t(std::floor(py * k_)) - by0_;
+        const std::size_t b = std::size_t(by) * nbx_ + std::size_t(bx);
+        for (uint32_t i = start_[b], e = start_[b + 1]; i < e; i++) {
+            const Grain& g = binned_[i];
+            const double dx = px - g.x, dy = py - g.y;
+            if (dx * dx + dy * dy <= g.r2) return true;
+        }
+        return false;
+    }
+
+private:
+    double k_;
+    int64_t bx0_ = 0, by0_ = 0;
+    int64_t nbx_ = 0, nby_ = 0;
+    std::vector<Grain> grains_;
+    std::vector<uint32_t> start_;
+    std::vector<Grain> binned_;
+};
+
+}  // namespace filmgrain::physical
