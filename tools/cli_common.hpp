@@ -22,6 +22,9 @@ FgcFlavour parse_flavour(const std::string& s);
 std::string flavour_name(FgcFlavour f);
 
 void register_apply(CLI::App& app);
+void register_render(CLI::App& app);
+void register_stats(CLI::App& app);
+void register_tradeoff(CLI::App& app);
 void register_demo(CLI::App& app, bool* ran_default);
 int run_demo();
 

@@ -11,6 +11,9 @@ int main(int argc, char** argv) {
     app.require_subcommand(0, 1);
     bool ran_default = false;
     filmgrain::cli::register_apply(app);
+    filmgrain::cli::register_render(app);
+    filmgrain::cli::register_stats(app);
+    filmgrain::cli::register_tradeoff(app);
     filmgrain::cli::register_demo(app, &ran_default);
     try {
         app.parse(argc, argv);

@@ -1,0 +1,17 @@
+// The speed/accuracy plot of `filmgrain tradeoff`: log-log axes, one labelled point per method.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace filmgrain::cli {
+
+struct PlotPoint {
+    std::string label;
+    double throughput = 0;  // Mpixel/s, x axis
+    double error = 0;       // y axis
+};
+
+// Writes a PNG (OpenImageIO). Returns false with a reason when it cannot.
+bool write_tradeoff_plot(const std::string& path, const std::vector<PlotPoint>& points, std::string* why);
+
+}  // namespace filmgrain::cli
