@@ -9,7 +9,7 @@
 
 #include "conformance_case.hpp"
 
-using namespace filmgrain::testing;
+using namespace filmgrain::test_support;
 namespace fs = std::filesystem;
 
 namespace {
