@@ -159,8 +159,8 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
         return report;
     }
 
-    // Tile side in output pixels: about 32 input pixels, fewer when the bins would not fit.
-    int tile = std::clamp(int(std::lround(32 * p.zoom)), 1, 256);
+    // Tile side in output pixels: about 64 input pixels, fewer when the bins would not fit.
+    int tile = std::clamp(int(std::lround(64 * p.zoom)), 1, 256);
     while (tile > 1 && std::pow((tile / p.zoom + 2 * margin) * k, 2) > kMaxBinsPerTile) tile = (tile + 1) / 2;
     const int tiles_x = (r.w + tile - 1) / tile, tiles_y = (r.h + tile - 1) / tile;
     report.tiles = tiles_x * tiles_y;

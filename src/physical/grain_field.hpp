@@ -12,6 +12,12 @@
 
 namespace filmgrain::physical {
 
+// floor() for the bin look-up without a libm call.
+inline int64_t floor_to_int(double v) {
+    const int64_t t = int64_t(v);
+    return t - (double(t) > v);
+}
+
 struct Grain {
     double x, y, r2;
 };
@@ -53,7 +59,7 @@ public:
     const std::vector<Grain>& grains() const { return grains_; }
     // Whether the point is inside some grain. The point must lie in the rectangle.
     bool covered(double px, double py) const {
-        const int64_t bx = int64_t(std::floor(px * k_)) - bx0_, by = int64_t(std::floor(py * k_)) - by0_;
+        const int64_t bx = floor_to_int(px * k_) - bx0_, by = floor_to_int(py * k_) - by0_;
         const std::size_t b = std::size_t(by) * nbx_ + std::size_t(bx);
         for (uint32_t i = start_[b], e = start_[b + 1]; i < e; i++) {
             const Grain& g = binned_[i];
