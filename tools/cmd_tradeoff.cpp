@@ -44,6 +44,14 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The 1-minute load average, which says how much of the 2 cores the timings really had.
+std::string load_average() {
+    std::ifstream f("/proc/loadavg");
+    std::string one;
+    f >> one;
+    return one.empty() ? "unknown" : one;
+}
+
 double cpu_seconds() {
     timespec ts;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
@@ -253,7 +261,10 @@ void register_tradeoff(CLI::App& app) {
             s << "1024x1024, grey 128, r = 0.05, sigma = 0.8, N = 800, " << o->threads << " threads, "
               << physical::algorithm_name(rep.algorithm) << ": **" << fmt("%.1f", wall) << " s wall**, "
               << fmt("%.1f", cpu) << " s CPU (" << fmt("%.1f", cpu) << " core-seconds, against 26 s x 40 cores = 1040 "
-              << "core-seconds for the published CPU pixel-wise code: " << fmt("%.0f", 1040 / cpu) << "x less CPU per output).";
+              << "core-seconds for the published CPU pixel-wise code: " << fmt("%.0f", 1040 / cpu) << "x less CPU per output). "
+              << "The machine's load average was " << load_average() << " on 2 cores when the run ended, so the wall "
+              << "time is that of a shared machine; on 2 idle cores it would be about CPU / threads = "
+              << fmt("%.1f", cpu / o->threads) << " s (an estimate from the CPU time, not a measurement).";
             bench = s.str();
             std::fprintf(stderr, "tradeoff: benchmark %s\n", bench.c_str());
         }
@@ -273,7 +284,8 @@ void register_tradeoff(CLI::App& app) {
            << "is " << fmt("%.2f", std::sqrt(target(0, 0)) * 255) << " code values).\n"
            << "- **lag-1 correlation**: C(1,0)/C(0,0), measured; the target is " << fmt("%.3f", target(1, 0) / target(0, 0))
            << ".\n- **throughput**: output Mpixel/s of the luma plane (FGC and AV1 also process 4:2:0 chroma without grain), "
-           << "wall clock on this machine (2 shared cores) with the thread count shown.\n\n"
+           << "wall clock on this machine (2 cores shared with other jobs; load average " << load_average()
+           << " when the table was written) with the thread count shown.\n\n"
            << "| method | settings | threads | measured on | throughput (Mpixel/s) | error | variance ratio | lag-1 correlation |\n"
            << "|---|---|---|---|---|---|---|---|\n";
         std::vector<PlotPoint> pts;
