@@ -1,0 +1,60 @@
+// AV1 film grain parameters (the model AFGS1 carries) from observations: the AR filter by
+// least squares over flat blocks (libaom's noise model fits the same causal neighbourhood),
+// with the lag chosen by measured residual; the piecewise-linear scaling functions fitted
+// to the level curves and reduced to at most 14 / 10 points; ar_coeff_shift and
+// scaling_shift chosen for precision; the scaling calibrated by synthesizing flat pictures
+// with the estimated filter and measuring them as the observations were measured.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "analysis/block_observations.hpp"
+#include "analysis/scaling_fit.hpp"
+#include "filmgrain/av1_params.hpp"
+#include "filmgrain/frame.hpp"
+
+namespace filmgrain::analysis {
+
+struct Av1Target {
+    ChromaFormat chroma = ChromaFormat::k420;
+    int bit_depth = 8;
+    double accuracy = 0.05;   // largest tolerated relative error of the scaling function
+    double lag_gain = 0.01;   // a longer lag must lower the residual variance by this much
+    int max_lag = 3;
+    int grain_seed = 7391;
+};
+
+struct Av1ComponentReport {
+    bool present = false;
+    LevelCurve curve;
+    std::vector<LevelPoint> points;  // levels in sample units
+    double error = 0.0;
+    std::vector<double> residual_by_lag;  // normalized residual variance for lags 0..3
+    std::vector<double> coefficients;     // real-valued AR coefficients at the chosen lag
+    std::string note;
+};
+
+struct Av1Estimate {
+    Av1FilmGrainParams params;
+    int chosen_lag = 0;
+    std::array<Av1ComponentReport, 3> components;
+};
+
+Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1Target& target);
+
+// Parameters for given level points (sample units) and real AR coefficients per plane
+// (chroma: the luma term last, when luma has grain). Empty points = no grain there.
+Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoint>, 3>& points, int lag,
+                                          const std::array<std::vector<double>, 3>& coefficients,
+                                          const Av1Target& target);
+
+// Solves the AR model of one lag from the lag-3 normal equations. Returns the coefficients
+// (AV1 order; the luma term last when `with_luma`) and the residual variance per equation.
+std::vector<double> solve_ar(const ArEquations& eq, int lag, bool with_luma, double* residual);
+
+// Normalized power spectrum (mean 1) of an AR filter with Gaussian innovation on an n x n
+// frequency grid, for comparing models (luma filters only).
+std::vector<double> ar_power_spectrum(const std::vector<double>& coefficients, int lag, int n);
+
+}  // namespace filmgrain::analysis

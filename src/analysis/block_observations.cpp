@@ -1,0 +1,169 @@
+#include "analysis/block_observations.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace filmgrain::analysis {
+
+const std::array<ArOffset, kMaxArTerms - 1>& ar_offsets_lag3() {
+    static const std::array<ArOffset, kMaxArTerms - 1> offsets = [] {
+        std::array<ArOffset, kMaxArTerms - 1> o{};
+        int i = 0;
+        for (int dy = -kMaxArLag; dy <= 0; dy++)
+            for (int dx = -kMaxArLag; dx <= kMaxArLag; dx++) {
+                if (dy == 0 && dx == 0) return o;
+                o[i++] = {dy, dx};
+            }
+        return o;
+    }();
+    return offsets;
+}
+
+double detrended_sigma(const cv::Mat& block, cv::Mat* residual) {
+    // Planar trend a + b x + c y with centred coordinates: the three fits are independent.
+    const int w = block.cols, h = block.rows;
+    const double cx = (w - 1) / 2.0, cy = (h - 1) / 2.0;
+    double s = 0, sx = 0, sy = 0, xx = 0, yy = 0;
+    for (int y = 0; y < h; y++) {
+        const float* r = block.ptr<float>(y);
+        for (int x = 0; x < w; x++) {
+            const double dx = x - cx, dy = y - cy;
+            s += r[x];
+            sx += r[x] * dx;
+            sy += r[x] * dy;
+            xx += dx * dx;
+            yy += dy * dy;
+        }
+    }
+    const double a = s / (w * h), b = sx / xx, c = sy / yy;
+    double ss = 0;
+    if (residual) residual->create(h, w, CV_32F);
+    for (int y = 0; y < h; y++) {
+        const float* r = block.ptr<float>(y);
+        float* o = residual ? residual->ptr<float>(y) : nullptr;
+        for (int x = 0; x < w; x++) {
+            const double v = r[x] - a - b * (x - cx) - c * (y - cy);
+            ss += v * v;
+            if (o) o[x] = float(v);
+        }
+    }
+    return std::sqrt(ss / (w * h - 3));
+}
+
+namespace {
+
+// Non-overlapping size x size blocks lying entirely in the usable area, placed greedily in
+// raster order on an 8-sample lattice rather than on a fixed grid, so that flat areas
+// between edges yield blocks wherever they fit.
+std::vector<cv::Rect> place_flat_blocks(const cv::Mat& integral, int w, int h, int size) {
+    constexpr int kLattice = 8;
+    std::vector<cv::Rect> out;
+    cv::Mat taken = cv::Mat::zeros(h, w, CV_8U);
+    for (int y = 0; y + size <= h; y += kLattice)
+        for (int x = 0; x + size <= w; x += kLattice) {
+            const int n = integral.at<int>(y + size, x + size) - integral.at<int>(y, x + size) -
+                          integral.at<int>(y + size, x) + integral.at<int>(y, x);
+            if (n != size * size) continue;
+            const cv::Rect r(x, y, size, size);
+            if (taken.at<uint8_t>(y, x) || taken.at<uint8_t>(y, x + size - 1) || cv::countNonZero(taken(r)) > 0) continue;
+            taken(r).setTo(1);
+            out.push_back(r);
+            x += size - kLattice;
+        }
+    return out;
+}
+
+void accumulate_ar(const cv::Mat& normalized, const cv::Mat& luma_normalized, const cv::Rect& r, ArEquations& eq) {
+    const auto& offs = ar_offsets_lag3();
+    const bool with_luma = !luma_normalized.empty();
+    const int terms = kMaxArTerms - (with_luma ? 0 : 1);
+    const int x0 = r.x + kMaxArLag, x1 = r.x + r.width - kMaxArLag;
+    const int y0 = r.y + kMaxArLag, y1 = r.y + r.height;
+    const int rows = (x1 - x0) * (y1 - y0);
+    cv::Mat X(rows, terms, CV_32F), Y(rows, 1, CV_32F);
+    int k = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++, k++) {
+            float* xr = X.ptr<float>(k);
+            for (int i = 0; i < kMaxArTerms - 1; i++) xr[i] = normalized.at<float>(y + offs[i].dy, x + offs[i].dx);
+            if (with_luma) xr[kMaxArTerms - 1] = luma_normalized.at<float>(y, x);
+            Y.at<float>(k) = normalized.at<float>(y, x);
+        }
+    cv::Mat xtx, xty;
+    cv::mulTransposed(X, xtx, true, cv::noArray(), 1.0, CV_64F);
+    cv::Mat X64, Y64;
+    X.convertTo(X64, CV_64F);
+    Y.convertTo(Y64, CV_64F);
+    xty = X64.t() * Y64;
+    eq.xtx(cv::Rect(0, 0, terms, terms)) += xtx;
+    eq.xty(cv::Rect(0, 0, 1, terms)) += xty;
+    eq.yty += Y64.dot(Y64);
+    eq.n += rows;
+}
+
+}  // namespace
+
+cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
+                      int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
+                      PlaneObservations& out) {
+    const int w = source.cols, h = source.rows;
+    const double to8 = 1.0 / double(1 << (bit_depth - 8));
+    const double maxv = double((1 << bit_depth) - 1);
+    out.flat_samples += cv::countNonZero(usable);
+    out.total_samples += (long long)w * h;
+    cv::Mat normalized = cv::Mat::zeros(h, w, CV_32F);
+    // Normalized grain everywhere (the chroma planes' luma term needs it beyond flat areas).
+    cv::Mat residual;
+    for (int by = 0; by < h; by += kLevelBlock)
+        for (int bx = 0; bx < w; bx += kLevelBlock) {
+            const cv::Rect r(bx, by, std::min(kLevelBlock, w - bx), std::min(kLevelBlock, h - by));
+            if (r.width < 4 || r.height < 4) continue;
+            const double sigma = detrended_sigma(grain(r), &residual);
+            if (sigma > 0) residual.convertTo(normalized(r), CV_32F, 1.0 / sigma);
+        }
+    cv::Mat usable01, integral;
+    cv::threshold(usable, usable01, 0, 1, cv::THRESH_BINARY);
+    cv::integral(usable01, integral, CV_32S);
+    std::vector<cv::Rect> level_blocks = place_flat_blocks(integral, w, h, kLevelBlock);
+    std::vector<cv::Rect> ar_blocks;
+    for (const cv::Rect& r : level_blocks) {
+        double mn, mx;
+        cv::minMaxLoc(source(r), &mn, &mx);
+        if (mn <= 0 || mx >= maxv) continue;  // clipped grain: its level is not observable
+        const double sigma = detrended_sigma(grain(r), &residual);
+        out.blocks.push_back({float(cv::mean(denoised(r))[0] * to8), float(sigma)});
+        if (request.ar_equations && sigma > 0) {
+            cv::Mat nb;
+            residual.convertTo(nb, CV_32F, 1.0 / sigma);
+            nb.copyTo(normalized(r));
+            ar_blocks.push_back(r);
+        }
+    }
+    if (request.ar_equations && !ar_blocks.empty()) {
+        // A regular subset keeps the cost bounded on large pictures.
+        const std::size_t step = (ar_blocks.size() + request.max_ar_blocks - 1) / request.max_ar_blocks;
+        for (std::size_t i = 0; i < ar_blocks.size(); i += step)
+            accumulate_ar(normalized, luma_normalized, ar_blocks[i], out.ar);
+    }
+    if (request.dct_power) {
+        cv::Mat coeffs, sq;
+        for (const cv::Rect& r : place_flat_blocks(integral, w, h, kDctBlock)) {
+            double mn, mx;
+            cv::minMaxLoc(source(r), &mn, &mx);
+            if (mn <= 0 || mx >= maxv) continue;
+            const int bin = std::clamp(int(cv::mean(denoised(r))[0] * to8) / (256 / kPowerBins), 0, kPowerBins - 1);
+            detrended_sigma(grain(r), &residual);
+            cv::dct(residual, coeffs);
+            cv::multiply(coeffs, coeffs, sq);
+            cv::Mat sq64;
+            sq.convertTo(sq64, CV_64F);
+            out.dct_power[bin] += sq64;
+            out.dct_blocks[bin]++;
+        }
+    }
+    return normalized;
+}
+
+}  // namespace filmgrain::analysis

@@ -1,0 +1,73 @@
+// Per-block measurements of the grain image over the flat regions, accumulated over the
+// analysed pictures: (intensity, grain level) pairs for the scaling function, averaged 64x64
+// DCT power per intensity range for the FGC cut-offs, and least-squares normal equations of
+// the AV1 auto-regressive model.
+#pragma once
+#include <array>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace filmgrain::analysis {
+
+inline constexpr int kLevelBlock = 32;     // block of the (intensity, level) observations
+inline constexpr int kDctBlock = 64;       // the FGC templates' transform size
+inline constexpr int kPowerBins = 16;      // DCT power is kept per 16 8-bit intensity levels
+inline constexpr int kMaxArLag = 3;
+inline constexpr int kMaxArTerms = 2 * kMaxArLag * (kMaxArLag + 1) + 1;  // + the chroma's luma term
+
+struct BlockSample {
+    float intensity8;  // mean of the denoised block, 8-bit scale
+    float sigma;       // grain standard deviation after planar trend removal, sample units
+};
+
+// The causal neighbours of the AV1 AR filter, in the order of AV1 7.18.3.3 for lag 3:
+// rows -3..0, columns -3..3, up to (but excluding) the current sample.
+struct ArOffset {
+    int dy, dx;
+};
+const std::array<ArOffset, kMaxArTerms - 1>& ar_offsets_lag3();
+
+// Normal equations sum(x x^T), sum(x y), sum(y^2) of y = a . x over normalized grain,
+// with x the lag-3 neighbours and, for chroma, the co-located normalized luma grain last.
+struct ArEquations {
+    cv::Mat xtx = cv::Mat::zeros(kMaxArTerms, kMaxArTerms, CV_64F);
+    cv::Mat xty = cv::Mat::zeros(kMaxArTerms, 1, CV_64F);
+    double yty = 0.0;
+    double n = 0.0;
+};
+
+struct PlaneObservations {
+    std::vector<BlockSample> blocks;
+    std::array<cv::Mat, kPowerBins> dct_power;  // CV_64F 64x64 sums of squared coefficients
+    std::array<int, kPowerBins> dct_blocks{};
+    ArEquations ar;
+    long long flat_samples = 0;
+    long long total_samples = 0;
+    PlaneObservations() {
+        for (auto& m : dct_power) m = cv::Mat::zeros(kDctBlock, kDctBlock, CV_64F);
+    }
+    int total_dct_blocks() const {
+        int n = 0;
+        for (int c : dct_blocks) n += c;
+        return n;
+    }
+};
+
+struct ObservationRequest {
+    bool dct_power = true;       // FGC cut-offs
+    bool ar_equations = false;   // AV1 AR model
+    int max_ar_blocks = 160;     // per picture and plane: enough equations, bounded time
+};
+
+// Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma
+// grain divided by its block level, resampled to this plane's size.
+// Returns this plane's grain divided by its block level (for the chroma planes' luma term).
+cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
+                      int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
+                      PlaneObservations& out);
+
+// Grain standard deviation of a block after removing its least-squares plane.
+double detrended_sigma(const cv::Mat& block, cv::Mat* residual);
+
+}  // namespace filmgrain::analysis

@@ -1,0 +1,92 @@
+#include "analysis/denoising.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace filmgrain::analysis {
+namespace {
+
+// Median of |values| over a regular subsample of the picture (robust spread estimate).
+double median_abs(const cv::Mat& m) {
+    std::vector<float> v;
+    v.reserve(m.total() / 7 + 1);
+    const int step = 7;
+    for (int y = 0; y < m.rows; y += 3) {
+        const float* r = m.ptr<float>(y);
+        for (int x = (y / 3) % step; x < m.cols; x += step) v.push_back(std::fabs(r[x]));
+    }
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+}
+
+constexpr double kSpatialSigma = 2.0;
+
+}  // namespace
+
+GrainEstimate denoise_spatial(const cv::Mat& source) {
+    GrainEstimate g;
+    cv::GaussianBlur(source, g.denoised, cv::Size(0, 0), kSpatialSigma, kSpatialSigma, cv::BORDER_REFLECT);
+    g.grain = source - g.denoised;
+    g.reliable = cv::Mat::zeros(source.size(), CV_8U);
+    return g;
+}
+
+GrainEstimate grain_from_denoised(const cv::Mat& source, const cv::Mat& denoised) {
+    GrainEstimate g;
+    g.denoised = denoised.clone();
+    g.grain = source - denoised;
+    g.reliable = cv::Mat(source.size(), CV_8U, cv::Scalar(255));
+    return g;
+}
+
+GrainEstimate denoise_temporal(const std::vector<const cv::Mat*>& window, int centre, int bit_depth) {
+    const cv::Mat& f0 = *window[centre];
+    cv::Mat sum = f0.clone();
+    cv::Mat count(f0.size(), CV_32F, cv::Scalar(1.0f));
+    // Smallest difference treated as motion: a fraction of one 8-bit code value, so that
+    // identical (grain-free) neighbours are always accepted.
+    const double floor_threshold = 0.5 * double(1 << (bit_depth - 8));
+    cv::Mat diff, blurred, accept;
+    for (std::size_t j = 0; j < window.size(); j++) {
+        if (int(j) == centre) continue;
+        cv::subtract(*window[j], f0, diff);
+        cv::GaussianBlur(diff, blurred, cv::Size(0, 0), 2.5, 2.5, cv::BORDER_REFLECT);
+        // 1.4826 * MAD = the standard deviation of the blurred grain difference where
+        // nothing moves; 3 of them separate motion from grain.
+        const double thr = std::max(floor_threshold, 3.0 * 1.4826 * median_abs(blurred));
+        cv::Mat absb = cv::abs(blurred);
+        cv::compare(absb, thr, accept, cv::CMP_LT);
+        cv::add(sum, *window[j], sum, accept);
+        cv::add(count, cv::Scalar(1.0f), count, accept);
+    }
+    GrainEstimate g;
+    cv::divide(sum, count, g.denoised);
+    cv::Mat spatial;
+    cv::GaussianBlur(f0, spatial, cv::Size(0, 0), kSpatialSigma, kSpatialSigma, cv::BORDER_REFLECT);
+    g.grain.create(f0.size(), CV_32F);
+    g.reliable.create(f0.size(), CV_8U);
+    for (int y = 0; y < f0.rows; y++) {
+        const float* s = f0.ptr<float>(y);
+        const float* n = count.ptr<float>(y);
+        float* d = g.denoised.ptr<float>(y);
+        const float* sp = spatial.ptr<float>(y);
+        float* gr = g.grain.ptr<float>(y);
+        uint8_t* rel = g.reliable.ptr<uint8_t>(y);
+        for (int x = 0; x < f0.cols; x++) {
+            if (n[x] >= 2.0f) {
+                gr[x] = (s[x] - d[x]) * std::sqrt(n[x] / (n[x] - 1.0f));
+                rel[x] = 255;
+            } else {
+                d[x] = sp[x];
+                gr[x] = s[x] - sp[x];
+                rel[x] = 0;
+            }
+        }
+    }
+    return g;
+}
+
+}  // namespace filmgrain::analysis

@@ -1,0 +1,126 @@
+#include "analysis/grain_analyzer.hpp"
+
+#include <opencv2/imgproc.hpp>
+
+#include "analysis/denoising.hpp"
+#include "analysis/flat_mask.hpp"
+#include "analysis/plane_image.hpp"
+#include "filmgrain/error.hpp"
+
+namespace filmgrain::analysis {
+
+GrainAnalyzer::GrainAnalyzer(const AnalysisOptions& options, PixelFormat format, int width, int height)
+    : o_(options), fmt_(format), width_(width), height_(height) {
+    if (o_.frame_step < 1) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("frame_step", o_.frame_step, 1, 1 << 30));
+    if (o_.temporal_radius < 0 || o_.temporal_radius > 8)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("temporal_radius", o_.temporal_radius, 0, 8));
+    if (o_.spatial_only) o_.temporal_radius = 0;
+}
+
+GrainAnalyzer::~GrainAnalyzer() = default;
+
+void GrainAnalyzer::add_frame(const FrameBuffer& source, const FrameBuffer* denoised) {
+    if (source.width() != width_ || source.height() != height_ || source.format().chroma != fmt_.chroma ||
+        source.format().bit_depth != fmt_.bit_depth)
+        throw Error(ErrorCode::kInvalidArgument, "frame " + std::to_string(frames_seen_) + " differs in size or format from the first");
+    if (denoised && (denoised->width() != width_ || denoised->height() != height_ ||
+                     denoised->format().chroma != fmt_.chroma || denoised->format().bit_depth != fmt_.bit_depth))
+        throw Error(ErrorCode::kInvalidArgument,
+                    "denoised frame " + std::to_string(frames_seen_) + " differs in size or format from the source");
+    Held h{frames_seen_, source, denoised ? std::make_unique<FrameBuffer>(*denoised) : nullptr};
+    window_.push_back(std::move(h));
+    frames_seen_++;
+    // A picture is analysed once its right-hand neighbours have arrived.
+    const int radius = denoised ? 0 : o_.temporal_radius;
+    while (next_to_analyse_ + radius < frames_seen_) {
+        if (next_to_analyse_ % o_.frame_step == 0) {
+            for (std::size_t i = 0; i < window_.size(); i++)
+                if (window_[i].index == next_to_analyse_) analyse(i);
+        }
+        next_to_analyse_++;
+    }
+    while (!window_.empty() && window_.front().index < next_to_analyse_ - o_.temporal_radius) window_.pop_front();
+}
+
+void GrainAnalyzer::finish() {
+    for (; next_to_analyse_ < frames_seen_; next_to_analyse_++)
+        if (next_to_analyse_ % o_.frame_step == 0)
+            for (std::size_t i = 0; i < window_.size(); i++)
+                if (window_[i].index == next_to_analyse_) analyse(i);
+    window_.clear();
+}
+
+double GrainAnalyzer::reliable_fraction() const {
+    return flat_samples_ ? double(reliable_samples_) / double(flat_samples_) : 0.0;
+}
+
+void GrainAnalyzer::analyse(std::size_t wi) {
+    const Held& centre = window_[wi];
+    const int k = centre.index;
+    FrameBuffer& src_fb = const_cast<FrameBuffer&>(centre.source);
+    const FrameView src = src_fb.view();
+    ObservationRequest req;
+    req.dct_power = o_.model == GrainModel::kFgc;
+    req.ar_equations = o_.model == GrainModel::kAv1;
+    cv::Mat luma_normalized;
+    const bool keep = sample_.index < 0 || (sample_.index < 2 * o_.temporal_radius && k >= 2 * o_.temporal_radius);
+    if (keep) sample_.index = k;
+    for (int p = 0; p < src.plane_count(); p++) {
+        const cv::Mat s = plane_to_float(src, p);
+        GrainEstimate g;
+        if (centre.denoised) {
+            g = grain_from_denoised(s, plane_to_float(centre.denoised->view(), p));
+        } else {
+            std::vector<cv::Mat> planes;
+            std::vector<const cv::Mat*> ptrs;
+            int centre_pos = 0;
+            planes.reserve(window_.size());
+            for (const auto& h : window_)
+                if (std::abs(h.index - k) <= o_.temporal_radius) {
+                    if (h.index == k) centre_pos = int(planes.size());
+                    planes.push_back(h.index == k ? s : plane_to_float(const_cast<FrameBuffer&>(h.source).view(), p));
+                }
+            for (const auto& m : planes) ptrs.push_back(&m);
+            g = planes.size() >= 2 ? denoise_temporal(ptrs, centre_pos, fmt_.bit_depth) : denoise_spatial(s);
+        }
+        const cv::Mat flat = flat_region_mask(g.denoised, fmt_.bit_depth);
+        cv::Mat usable;
+        cv::bitwise_and(flat, g.reliable, usable);
+        const int nflat = cv::countNonZero(flat), nusable = cv::countNonZero(usable);
+        flat_samples_ += nflat;
+        reliable_samples_ += nusable;
+        // Nothing (or almost nothing) still: measure on the spatial estimate rather than not at all.
+        if (nusable < nflat / 10) usable = flat;
+        cv::Mat luma_term;
+        if (p > 0 && req.ar_equations && !luma_normalized.empty())
+            cv::resize(luma_normalized, luma_term, s.size(), 0, 0, cv::INTER_AREA);
+        cv::Mat normalized = observe_plane(s, g.denoised, g.grain, usable, fmt_.bit_depth, luma_term, req, obs_[p]);
+        if (p == 0) luma_normalized = normalized;
+        if (keep) {
+            sample_.source[p] = s;
+            sample_.denoised[p] = g.denoised;
+            if (p == 0) sample_.flat_luma = flat;
+        }
+    }
+    frames_analysed_++;
+}
+
+FgcEstimate GrainAnalyzer::estimate_fgc() const {
+    FgcTarget t;
+    t.flavour = o_.flavour;
+    t.chroma = fmt_.chroma;
+    t.bit_depth = fmt_.bit_depth;
+    t.accuracy = o_.accuracy;
+    return analysis::estimate_fgc(obs_, t);
+}
+
+Av1Estimate GrainAnalyzer::estimate_av1() const {
+    Av1Target t;
+    t.chroma = fmt_.chroma;
+    t.bit_depth = fmt_.bit_depth;
+    t.accuracy = o_.accuracy;
+    t.max_lag = o_.max_ar_lag;
+    return analysis::estimate_av1(obs_, t);
+}
+
+}  // namespace filmgrain::analysis

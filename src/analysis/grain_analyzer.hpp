@@ -1,0 +1,72 @@
+// The analysis driver: pictures in display order (optionally with their denoised versions)
+// go in; every `frame_step`-th picture is analysed with its temporal neighbours; the
+// observations of all analysed pictures are pooled into one parameter set for the clip.
+#pragma once
+#include <array>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "analysis/av1_estimation.hpp"
+#include "analysis/block_observations.hpp"
+#include "analysis/fgc_estimation.hpp"
+#include "core/frame_buffer.hpp"
+
+namespace filmgrain::analysis {
+
+enum class GrainModel { kFgc, kAv1 };
+
+struct AnalysisOptions {
+    GrainModel model = GrainModel::kFgc;
+    FgcFlavour flavour = FgcFlavour::kRdd5;
+    int frame_step = 1;        // analyse pictures 0, step, 2 step, ...
+    int temporal_radius = 2;   // neighbours on each side used by the temporal denoiser
+    double accuracy = 0.05;
+    int max_ar_lag = 3;
+    bool spatial_only = false;  // denoise each picture on its own (no temporal neighbours)
+};
+
+// One analysed picture kept for the report: source and denoised planes (CV_32F).
+struct AnalysedPicture {
+    int index = -1;
+    std::array<cv::Mat, 3> source, denoised;
+    cv::Mat flat_luma;
+};
+
+class GrainAnalyzer {
+public:
+    GrainAnalyzer(const AnalysisOptions& options, PixelFormat format, int width, int height);
+    ~GrainAnalyzer();
+    // Pictures in display order. `denoised` (same format) replaces the internal denoiser.
+    void add_frame(const FrameBuffer& source, const FrameBuffer* denoised = nullptr);
+    // Analyses the pictures still waiting for neighbours. Call once after the last frame.
+    void finish();
+    int frames_seen() const { return frames_seen_; }
+    int frames_analysed() const { return frames_analysed_; }
+    const std::array<PlaneObservations, 3>& observations() const { return obs_; }
+    const AnalysedPicture& sample_picture() const { return sample_; }
+    double reliable_fraction() const;  // share of flat samples with an unbiased grain estimate
+
+    FgcEstimate estimate_fgc() const;
+    Av1Estimate estimate_av1() const;
+
+private:
+    void analyse(std::size_t window_index);
+    AnalysisOptions o_;
+    PixelFormat fmt_;
+    int width_, height_;
+    struct Held {
+        int index;
+        FrameBuffer source;
+        std::unique_ptr<FrameBuffer> denoised;
+    };
+    std::deque<Held> window_;
+    int frames_seen_ = 0, frames_analysed_ = 0;
+    int next_to_analyse_ = 0;
+    std::array<PlaneObservations, 3> obs_;
+    long long reliable_samples_ = 0, flat_samples_ = 0;
+    AnalysedPicture sample_;
+};
+
+}  // namespace filmgrain::analysis

@@ -1,0 +1,56 @@
+// The grain level as a function of intensity (the "scaling function" both models signal),
+// fitted to the block observations: sub-range averaging, outlier passes, a two-pass
+// polynomial fit that fills sparse sub-ranges, constant extrapolation beyond the observed
+// range (TR 23002-9 clause 8; HM's analyser fits, then quantizes).
+#pragma once
+#include <array>
+#include <vector>
+
+#include "analysis/block_observations.hpp"
+
+namespace filmgrain::analysis {
+
+inline constexpr int kSubRangeWidth = 4;  // 8-bit levels per sub-range
+inline constexpr int kSubRanges = 256 / kSubRangeWidth;
+
+struct LevelCurve {
+    std::array<double, 256> level{};   // grain standard deviation per 8-bit intensity, sample units
+    std::array<double, 256> weight{};  // observations supporting each intensity (0 = extrapolated)
+    std::array<double, kSubRanges> sub_range_level{};
+    std::array<int, kSubRanges> sub_range_count{};
+    int observed_low = 255, observed_high = 0;  // intensity range with observations
+    std::size_t observations = 0;               // after outlier removal
+    std::size_t outliers = 0;
+    std::array<double, 5> polynomial{};  // in x = intensity / 255
+    bool valid() const { return observations > 0 && observed_low <= observed_high; }
+};
+
+LevelCurve fit_level_curve(const std::vector<BlockSample>& blocks);
+
+// Contiguous intensity intervals, each with one level: the segmentation with the least
+// weighted squared error (the Lloyd-Max criterion restricted to intervals; solved exactly by
+// dynamic programming over the 256 intensities).
+struct LevelInterval {
+    int lower = 0, upper = 255;
+    double level = 0.0;
+};
+std::vector<LevelInterval> segment_levels(const LevelCurve& curve, int count);
+
+// Worst relative error of a piecewise description against the curve over observed
+// intensities (relative to the curve's largest level, so that near-zero levels do not
+// dominate).
+double relative_error(const LevelCurve& curve, const std::vector<double>& approx);
+// The same, as an observation-weighted RMS (robust to a few noisy sub-ranges).
+double rms_relative_error(const LevelCurve& curve, const std::vector<double>& approx);
+
+// Piecewise-linear points (value, level): a regularized least-squares fit on fixed knots,
+// then points removed one at a time, least damage first, while at most `max_points` remain
+// and the error stays within `tolerance` (relative, as relative_error).
+struct LevelPoint {
+    int value;
+    double level;
+};
+std::vector<LevelPoint> fit_piecewise_linear(const LevelCurve& curve, int max_points, double tolerance);
+std::vector<double> evaluate_piecewise_linear(const std::vector<LevelPoint>& points);
+
+}  // namespace filmgrain::analysis
