@@ -25,6 +25,8 @@ void register_apply(CLI::App& app);
 void register_render(CLI::App& app);
 void register_stats(CLI::App& app);
 void register_tradeoff(CLI::App& app);
+void register_analyze(CLI::App& app);
+void register_preset(CLI::App& app);
 void register_demo(CLI::App& app, bool* ran_default);
 int run_demo();
 

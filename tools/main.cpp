@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
     filmgrain::cli::register_render(app);
     filmgrain::cli::register_stats(app);
     filmgrain::cli::register_tradeoff(app);
+    filmgrain::cli::register_analyze(app);
+    filmgrain::cli::register_preset(app);
     filmgrain::cli::register_demo(app, &ran_default);
     try {
         app.parse(argc, argv);

@@ -84,9 +84,9 @@ std::vector<double> solve_ar(const ArEquations& eq, int lag, bool with_luma, dou
     }
     cv::Mat sol;
     cv::solve(A, b, sol, cv::DECOMP_CHOLESKY);
+    for (int i = 0; i < k; i++) a[i] = sol.at<double>(i);
     double r = eq.yty;
     for (int i = 0; i < k; i++) {
-        a[i] = sol.at<double>(i);
         r -= 2 * a[i] * b.at<double>(i);
         for (int j = 0; j < k; j++) r += a[i] * a[j] * eq.xtx.at<double>(idx[i], idx[j]);
     }
@@ -235,8 +235,7 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
         rep.present = true;
         points[c] = rep.points;
     }
-    // The lag: the shortest whose residual is within lag_gain of the longest's, over the
-    // planes that have grain and enough equations.
+    // The lag, shared by all planes.
     const bool luma = e.components[0].present;
     int lag = 0;
     for (int c = 0; c < num_planes; c++) {
@@ -248,12 +247,32 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
             solve_ar(obs[c].ar, l, with_luma, &r);
             rep.residual_by_lag.push_back(r);
         }
-        const double best = rep.residual_by_lag[std::min(target.max_lag, kMaxArLag)];
-        for (int l = 0; l <= target.max_lag; l++)
-            if (rep.residual_by_lag[l] <= best * (1.0 + target.lag_gain)) {
-                lag = std::max(lag, l);
+        // The shortest lag whose filter shapes the grain like the longest one (the residual
+        // variance alone misses spectral shape). "Like" means within what the data can tell:
+        // the spectra of the longest lag fitted to two halves of the blocks differ by the
+        // fit's own noise, and the tolerance is never below that.
+        const int longest = std::min(target.max_lag, kMaxArLag);
+        const auto spectrum_deviation = [](const std::vector<double>& a, const std::vector<double>& b) {
+            double dev = 0;
+            for (std::size_t i = 0; i < a.size(); i++) dev += std::fabs(a[i] - b[i]);
+            return dev / double(a.size());
+        };
+        const auto full = ar_power_spectrum(solve_ar(obs[c].ar, longest, false, nullptr), longest, 32);
+        double tolerance = target.lag_spectrum_tolerance;
+        if (obs[c].ar_halves[0].n >= kMinArEquations && obs[c].ar_halves[1].n >= kMinArEquations)
+            tolerance = std::max(tolerance, spectrum_deviation(ar_power_spectrum(solve_ar(obs[c].ar_halves[0], longest, false, nullptr), longest, 32),
+                                                               ar_power_spectrum(solve_ar(obs[c].ar_halves[1], longest, false, nullptr), longest, 32)));
+        rep.lag_tolerance = tolerance;
+        for (int l = 0; l <= longest; l++) {
+            const double dev = spectrum_deviation(ar_power_spectrum(solve_ar(obs[c].ar, l, false, nullptr), l, 32), full);
+            rep.spectrum_error_by_lag.push_back(dev);
+            if (dev <= tolerance) {
+                rep.own_lag = l;
                 break;
             }
+        }
+        // Luma decides when it has grain (its fit has four times the equations of 4:2:0 chroma).
+        if (c == 0 || !luma) lag = std::max(lag, rep.own_lag);
     }
     e.chosen_lag = lag;
     std::array<std::vector<double>, 3> coeffs;

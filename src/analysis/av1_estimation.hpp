@@ -20,7 +20,7 @@ struct Av1Target {
     ChromaFormat chroma = ChromaFormat::k420;
     int bit_depth = 8;
     double accuracy = 0.05;   // largest tolerated relative error of the scaling function
-    double lag_gain = 0.01;   // a longer lag must lower the residual variance by this much
+    double lag_spectrum_tolerance = 0.08;  // least tolerated mean spectrum deviation from the longest lag's model
     int max_lag = 3;
     int grain_seed = 7391;
 };
@@ -31,6 +31,9 @@ struct Av1ComponentReport {
     std::vector<LevelPoint> points;  // levels in sample units
     double error = 0.0;
     std::vector<double> residual_by_lag;  // normalized residual variance for lags 0..3
+    std::vector<double> spectrum_error_by_lag;  // spectrum deviation from the longest lag's model
+    double lag_tolerance = 0.0;                 // the deviation accepted (at least the split-half noise)
+    int own_lag = 0;                            // the lag this plane alone would choose
     std::vector<double> coefficients;     // real-valued AR coefficients at the chosen lag
     std::string note;
 };

@@ -145,7 +145,12 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
         // A regular subset keeps the cost bounded on large pictures.
         const std::size_t step = (ar_blocks.size() + request.max_ar_blocks - 1) / request.max_ar_blocks;
         for (std::size_t i = 0; i < ar_blocks.size(); i += step)
-            accumulate_ar(normalized, luma_normalized, ar_blocks[i], out.ar);
+            accumulate_ar(normalized, luma_normalized, ar_blocks[i], out.ar_halves[request.half & 1]);
+        out.ar = out.ar_halves[0];
+        out.ar.xtx = out.ar_halves[0].xtx + out.ar_halves[1].xtx;
+        out.ar.xty = out.ar_halves[0].xty + out.ar_halves[1].xty;
+        out.ar.yty = out.ar_halves[0].yty + out.ar_halves[1].yty;
+        out.ar.n = out.ar_halves[0].n + out.ar_halves[1].n;
     }
     if (request.dct_power) {
         cv::Mat coeffs, sq;

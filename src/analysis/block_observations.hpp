@@ -42,6 +42,9 @@ struct PlaneObservations {
     std::array<cv::Mat, kPowerBins> dct_power;  // CV_64F 64x64 sums of squared coefficients
     std::array<int, kPowerBins> dct_blocks{};
     ArEquations ar;
+    // Even and odd analysed pictures apart: two fits whose difference shows the fit's own noise
+    // (grain realizations differ between pictures, not between blocks of one picture's template).
+    std::array<ArEquations, 2> ar_halves;
     long long flat_samples = 0;
     long long total_samples = 0;
     PlaneObservations() {
@@ -58,6 +61,7 @@ struct ObservationRequest {
     bool dct_power = true;       // FGC cut-offs
     bool ar_equations = false;   // AV1 AR model
     int max_ar_blocks = 160;     // per picture and plane: enough equations, bounded time
+    int half = 0;                // which of ar_halves this picture adds to
 };
 
 // Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma

@@ -60,8 +60,9 @@ void GrainAnalyzer::analyse(std::size_t wi) {
     FrameBuffer& src_fb = const_cast<FrameBuffer&>(centre.source);
     const FrameView src = src_fb.view();
     ObservationRequest req;
-    req.dct_power = o_.model == GrainModel::kFgc;
+    req.dct_power = true;  // FGC cut-offs; the spectrum of the report for both models
     req.ar_equations = o_.model == GrainModel::kAv1;
+    req.half = frames_analysed_ & 1;
     cv::Mat luma_normalized;
     const bool keep = sample_.index < 0 || (sample_.index < 2 * o_.temporal_radius && k >= 2 * o_.temporal_radius);
     if (keep) sample_.index = k;

@@ -203,8 +203,10 @@ void run_av1_case(const Av1Case& c) {
     double dev = 0;
     for (std::size_t i = 0; i < st.size(); i++) dev += std::fabs(se[i] - st[i]);
     dev /= double(st.size());  // spectra have mean 1
-    std::printf("[ measured ] %s: true lag %d, estimated lag %d, spectrum deviation %.3f\n", c.name.c_str(),
-                c.params.ar_coeff_lag, est.params.ar_coeff_lag, dev);
+    std::string by_lag;
+    for (double d : est.components[0].spectrum_error_by_lag) by_lag += " " + std::to_string(d).substr(0, 5);
+    std::printf("[ measured ] %s: true lag %d, estimated lag %d, spectrum deviation %.3f (lag selection:%s)\n",
+                c.name.c_str(), c.params.ar_coeff_lag, est.params.ar_coeff_lag, dev, by_lag.c_str());
     EXPECT_LE(dev, kSpectrumTolerance) << c.name;
     const auto resynth = synthesize_av1(est.params, clean, c.frames);
     expect_levels(grainy, resynth, clean, c.bands, c.name);

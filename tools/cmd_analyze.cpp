@@ -1,0 +1,296 @@
+// `filmgrain analyze`: estimate FGC SEI or AV1 grain parameters from grainy video (TR 23002-9
+// clause 8), optionally with its denoised version; writes parameters usable as
+// `apply --params`, a libaom grain table, an FGC SEI payload and an HTML report.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "cli_common.hpp"
+#include "filmgrain/error.hpp"
+#include "grain_outputs.hpp"
+
+#ifdef FILMGRAIN_HAVE_ANALYSIS
+#include <opencv2/core.hpp>
+
+#include "analysis/analysis_report.hpp"
+#include "analysis/grain_analyzer.hpp"
+#include "analysis/plane_image.hpp"
+#include "av1/av1_synthesis.hpp"
+#include "fgc/fgc_synthesizer.hpp"
+#include "metadata/fgc_sei.hpp"
+#endif
+
+namespace filmgrain::cli {
+
+#ifdef FILMGRAIN_HAVE_ANALYSIS
+namespace {
+
+struct AnalyzeOptions {
+    std::string input, denoised, model, output, table, sei, report;
+    std::string sei_codec = "hevc";
+    std::string flavour = "rdd5";
+    int frame_step = 0;
+    int max_frames = 32;
+    int temporal_radius = 2;
+    double accuracy = 0.05;
+    int max_lag = 3;
+    bool spatial = false;
+    bool quiet = false;
+    RawVideoOptions raw;
+};
+
+// Frames in a regular file, from its size (Y4M: each frame has a short header); -1 if unknown.
+long long estimate_frame_count(const std::string& path, const VideoInfo& info) {
+    if (path == "-") return -1;
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) return -1;
+    const std::size_t fb = FrameBuffer::frame_bytes(info.width, info.height, info.format);
+    return (long long)(size / (fb + (info.y4m ? 6 : 0)));
+}
+
+std::string percent(double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f%%", 100 * x);
+    return b;
+}
+
+std::string list_percent(const std::vector<double>& v) {
+    std::string s;
+    for (std::size_t i = 0; i < v.size(); i++) s += (i ? ", " : "") + percent(v[i]);
+    return s;
+}
+
+FrameBuffer picture_from_planes(const std::array<cv::Mat, 3>& planes, PixelFormat fmt, int w, int h) {
+    FrameBuffer fb(w, h, fmt);
+    FrameView v = fb.view();
+    for (int p = 0; p < v.plane_count(); p++) analysis::float_to_plane(planes[p], v, p);
+    return fb;
+}
+
+cv::Mat centre_crop(const cv::Mat& m, int size) {
+    const int w = std::min(size, m.cols), h = std::min(size, m.rows);
+    return m(cv::Rect((m.cols - w) / 2, (m.rows - h) / 2, w, h)).clone();
+}
+
+int run_analyze(const AnalyzeOptions& o) {
+    if (o.model != "fgc" && o.model != "av1")
+        throw Error(ErrorCode::kInvalidArgument, "--model '" + o.model + "' is not known (allowed fgc, av1)");
+    const bool fgc = o.model == "fgc";
+    if (fgc && !o.table.empty()) throw Error(ErrorCode::kInvalidArgument, "--table belongs to --model av1");
+    if (!fgc && !o.sei.empty()) throw Error(ErrorCode::kInvalidArgument, "--sei belongs to --model fgc");
+    const FgcFlavour flavour = parse_flavour(o.flavour);
+    if (flavour == FgcFlavour::kVfgs)
+        throw Error(ErrorCode::kInvalidArgument, "--flavour vfgs is not supported by analyze (allowed rdd5, vtm)");
+    const FgcCodec codec = parse_fgc_codec(o.sei_codec);
+    if (o.max_frames < 1) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--max-frames", o.max_frames, 1, 1 << 30));
+    if (o.frame_step < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--frame-step", o.frame_step, 0, 1 << 30));
+    if (!(o.accuracy > 0 && o.accuracy < 1))
+        throw Error(ErrorCode::kInvalidArgument, "--accuracy " + std::to_string(o.accuracy) + " is out of range (allowed 0..1, exclusive)");
+    if (o.max_lag < 0 || o.max_lag > 3) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--max-lag", o.max_lag, 0, 3));
+
+    VideoReader reader(o.input, o.raw.to_info());
+    const VideoInfo info = reader.info();
+    std::unique_ptr<VideoReader> dreader;
+    if (!o.denoised.empty()) dreader = std::make_unique<VideoReader>(o.denoised, o.raw.to_info());
+    const long long total = estimate_frame_count(o.input, info);
+    analysis::AnalysisOptions ao;
+    ao.model = fgc ? analysis::GrainModel::kFgc : analysis::GrainModel::kAv1;
+    ao.flavour = flavour;
+    // A subset of the pictures: grain statistics are stationary over a shot, and the
+    // observations of ~32 pictures already pool thousands of blocks.
+    ao.frame_step = o.frame_step > 0 ? o.frame_step : total > 0 ? int(std::max<long long>(1, (total + o.max_frames - 1) / o.max_frames)) : 8;
+    ao.temporal_radius = o.temporal_radius;
+    ao.spatial_only = o.spatial;
+    ao.accuracy = o.accuracy;
+    ao.max_ar_lag = o.max_lag;
+    std::unique_ptr<analysis::GrainAnalyzer> analyzer;
+    FrameBuffer in, den;
+    int k = 0;
+    while (reader.read(in)) {
+        if (!analyzer) analyzer = std::make_unique<analysis::GrainAnalyzer>(ao, in.format(), in.width(), in.height());
+        const FrameBuffer* dptr = nullptr;
+        if (dreader) {
+            if (!dreader->read(den))
+                throw Error(ErrorCode::kIo, "--denoised '" + o.denoised + "' ends at frame " + std::to_string(k) +
+                                                " before the input");
+            dptr = &den;
+        }
+        analyzer->add_frame(in, dptr);
+        k++;
+        if (!o.quiet && k % 25 == 0) {
+            if (total > 0)
+                std::fprintf(stderr, "\rfilmgrain analyze: frame %d of %lld, %d analysed", k, total, analyzer->frames_analysed());
+            else
+                std::fprintf(stderr, "\rfilmgrain analyze: frame %d, %d analysed", k, analyzer->frames_analysed());
+            std::fflush(stderr);
+        }
+    }
+    if (k == 0) throw Error(ErrorCode::kIo, "input '" + o.input + "' holds no frame");
+    analyzer->finish();
+    if (!o.quiet && k >= 25) std::fprintf(stderr, "\n");
+
+    const PixelFormat fmt = info.format;
+    std::string params_text;
+    FgcParams fgc_params;
+    std::vector<Av1FilmGrainParams> av1_frames;
+    analysis::ReportInput rep;
+    rep.bit_depth = fmt.bit_depth;
+    const char* names[3] = {"Y", "Cb", "Cr"};
+    const int nplanes = num_planes(fmt.chroma);
+    const double to8 = 1.0 / double(1 << (fmt.bit_depth - 8));
+    auto pct = [&](double x) { return percent(x); };
+    if (fgc) {
+        const analysis::FgcEstimate e = analyzer->estimate_fgc();
+        fgc_params = e.params;
+        params_text = fgc_params_json_text(fgc_params);
+        for (int c = 0; c < nplanes; c++) {
+            const auto& r = e.components[c];
+            analysis::ReportPlane rp;
+            rp.name = names[c];
+            rp.present = fgc_params.comp[c].comp_model_present_flag && !fgc_params.film_grain_characteristics_cancel_flag;
+            rp.curve = r.curve;
+            rp.observations = analyzer->observations()[c].blocks;
+            rp.intervals = r.intervals;
+            rp.power = analysis::mean_power(analyzer->observations()[c], 0, 255);
+            std::ostringstream s;
+            if (r.present) {
+                s << r.chosen_order << " interval(s), RMS error " << pct(r.error) << " (by count: " << list_percent(r.error_by_order)
+                  << "); " << r.cutoff_pairs << " cut-off pair(s), plane-resolution cut-offs";
+                for (const auto& pr : r.plane_cutoffs) s << " (" << pr.first << "," << pr.second << ")";
+                s << "; log2_scale_factor " << fgc_params.log2_scale_factor;
+            }
+            if (!r.note.empty()) s << (r.present ? "; " : "") << r.note;
+            s << "; " << r.curve.observations << " block observations, " << r.curve.outliers << " outliers removed";
+            rp.summary = s.str();
+            rep.planes.push_back(rp);
+        }
+    } else {
+        const analysis::Av1Estimate e = analyzer->estimate_av1();
+        av1_frames = av1_per_frame(e.params, k);
+        Av1ColorInfo color;
+        color.bit_depth = fmt.bit_depth;
+        color.mono_chrome = fmt.chroma == ChromaFormat::k400;
+        color.subsampling_x = chroma_shift_x(fmt.chroma);
+        color.subsampling_y = chroma_shift_y(fmt.chroma);
+        params_text = av1_params_json_text(av1_frames, color);
+        for (int c = 0; c < nplanes; c++) {
+            const auto& r = e.components[c];
+            analysis::ReportPlane rp;
+            rp.name = names[c];
+            rp.present = r.present && e.params.apply_grain;
+            rp.curve = r.curve;
+            rp.observations = analyzer->observations()[c].blocks;
+            rp.points = r.points;
+            rp.power = analysis::mean_power(analyzer->observations()[c], 0, 255);
+            std::ostringstream s;
+            if (r.present) {
+                s << r.points.size() << " scaling point(s), worst error " << pct(r.error) << "; AR lag " << e.chosen_lag;
+                if (!r.residual_by_lag.empty())
+                    s << " (normalized residual by lag: " << list_percent(r.residual_by_lag)
+                      << "; spectrum deviation from the longest lag: " << list_percent(r.spectrum_error_by_lag)
+                      << ", accepted " << percent(r.lag_tolerance) << ")";
+                s << "; scaling_shift " << e.params.grain_scaling_minus_8 + 8 << ", ar_coeff_shift "
+                  << e.params.ar_coeff_shift_minus_6 + 6;
+            }
+            if (!r.note.empty()) s << (r.present ? "; " : "") << r.note;
+            s << "; " << r.curve.observations << " block observations, " << r.curve.outliers << " outliers removed";
+            rp.summary = s.str();
+            rep.planes.push_back(rp);
+        }
+    }
+    (void)to8;
+
+    if (!o.report.empty()) {
+        const std::filesystem::path rp(o.report);
+        if (rp.has_parent_path()) std::filesystem::create_directories(rp.parent_path());
+        const auto& sample = analyzer->sample_picture();
+        FrameBuffer den_fb = picture_from_planes(sample.denoised, fmt, info.width, info.height);
+        FrameBuffer resynth = den_fb;
+        if (fgc) {
+            FgcOptions fo;
+            fo.flavour = flavour;
+            FgcSynthesizer synth(fo);
+            synth.receive_sei(fgc_params, codec);
+            synth.apply(den_fb.view(), resynth.view(), FgcPictureIds{sample.index, 0});
+        } else {
+            av1::apply_film_grain(av1_frames.at(std::size_t(sample.index)), den_fb.view(), resynth.view(), 2);
+        }
+        const int crop = 256;
+        rep.source = centre_crop(sample.source[0], crop);
+        rep.denoised = centre_crop(sample.denoised[0], crop);
+        rep.resynthesized = centre_crop(analysis::plane_to_float(resynth.view(), 0), crop);
+        rep.title = std::string("filmgrain analyze: ") + (fgc ? "FGC SEI (" + flavour_name(flavour) + ")" : "AV1 film grain");
+        rep.input_description = o.input + ": " + std::to_string(info.width) + "x" + std::to_string(info.height) + " " +
+                                pix_fmt_name(fmt) + ", " + std::to_string(k) + " frame(s), " +
+                                std::to_string(analyzer->frames_analysed()) + " analysed (every " +
+                                std::to_string(ao.frame_step) + "), crop from frame " + std::to_string(sample.index);
+        rep.notes.push_back(o.denoised.empty()
+                                ? (o.spatial ? "denoising: spatial (Gaussian) only; coarse grain is underestimated"
+                                             : "denoising: motion-adaptive temporal over +-" + std::to_string(o.temporal_radius) +
+                                                   " frames; " + percent(analyzer->reliable_fraction()) +
+                                                   " of the flat samples had temporal estimates")
+                                : "denoised input supplied: " + o.denoised);
+        rep.parameters_text = params_text;
+        analysis::write_analysis_report(o.report, rep);
+    }
+    write_file_atomically(o.output, params_text);
+    if (!o.table.empty()) write_file_atomically(o.table, av1_grain_table_text(av1_frames, info.fps_num, info.fps_den));
+    if (!o.sei.empty()) {
+        const std::vector<uint8_t> payload = write_fgc_sei_payload(fgc_params, codec);
+        write_file_atomically(o.sei, std::string(payload.begin(), payload.end()));
+    }
+    if (!o.quiet) {
+        std::fprintf(stderr, "filmgrain analyze: %d frame(s), %d analysed; parameters written to %s\n", k,
+                     analyzer->frames_analysed(), o.output.c_str());
+        for (const auto& p : rep.planes)
+            std::fprintf(stderr, "  %s: %s%s\n", p.name.c_str(), p.present ? "" : "no grain; ", p.summary.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+void register_analyze(CLI::App& app) {
+    auto o = std::make_shared<AnalyzeOptions>();
+    CLI::App* sub = app.add_subcommand("analyze", "estimate FGC SEI or AV1 film grain parameters from grainy video");
+    sub->add_option("input", o->input, "grainy input (raw planar YUV or Y4M), - for stdin")->required();
+    sub->add_option("--denoised", o->denoised, "the input's denoised version (same size and format) instead of the built-in denoiser");
+    sub->add_option("--model", o->model, "fgc (FGC SEI frequency-filtering model) or av1 (AV1 / AFGS1)")->required();
+    sub->add_option("--output,-o", o->output, "parameter JSON, usable as `filmgrain apply --params`")->required();
+    sub->add_option("--table", o->table, "av1: also write a libaom film grain table (filmgrn1)");
+    sub->add_option("--sei", o->sei, "fgc: also write the FGC SEI payload (payloadType 19 body)");
+    sub->add_option("--sei-codec", o->sei_codec, "fgc: SEI syntax variant avc, hevc or vvc")->capture_default_str();
+    sub->add_option("--report", o->report, "HTML report; its PNG images are written beside it");
+    sub->add_option("--flavour", o->flavour, "fgc: the synthesis the scale is calibrated for, rdd5 or vtm")->capture_default_str();
+    sub->add_option("--max-frames", o->max_frames, "analyse about this many pictures, evenly spread")->capture_default_str();
+    sub->add_option("--frame-step", o->frame_step, "analyse every Nth picture (0: from --max-frames)")->capture_default_str();
+    sub->add_option("--temporal-radius", o->temporal_radius, "neighbours on each side for temporal denoising (0..8)")
+        ->capture_default_str();
+    sub->add_flag("--spatial", o->spatial, "denoise each picture on its own (spatial fallback only)");
+    sub->add_option("--accuracy", o->accuracy,
+                    "relative error the smallest model must meet (intervals / scaling points)")
+        ->capture_default_str();
+    sub->add_option("--max-lag", o->max_lag, "av1: longest AR lag considered (0..3)")->capture_default_str();
+    sub->add_flag("--quiet,-q", o->quiet, "no messages on stderr except errors");
+    o->raw.add_to(sub);
+    sub->callback([o]() {
+        int rc = run_analyze(*o);
+        if (rc) throw CLI::RuntimeError(rc);
+    });
+}
+
+#else
+
+void register_analyze(CLI::App& app) {
+    CLI::App* sub = app.add_subcommand("analyze", "estimate grain parameters (unavailable: built without OpenCV)");
+    sub->allow_extras();
+    sub->callback([]() {
+        throw Error(ErrorCode::kUnsupported, "analyze needs OpenCV (libopencv-dev); rebuild after tools/install-deps");
+    });
+}
+
+#endif
+
+}  // namespace filmgrain::cli
