@@ -20,7 +20,7 @@ namespace filmgrain {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::run_command;
+using test_support::run_command;
 
 std::string tool() { return FILMGRAIN_TOOL_PATH; }
 
