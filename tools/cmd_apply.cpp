@@ -7,6 +7,7 @@
 
 #include "av1/av1_synthesis.hpp"
 #include "cli_common.hpp"
+#include "frame_pipeline.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "metadata/aom_grain_table.hpp"
@@ -96,8 +97,9 @@ bool ends_with(const std::string& s, const char* suffix) {
     return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
 }
 
-// The per-frame loop shared by every model: read, synthesize, write; the output file
-// appears only when every frame succeeded.
+// The per-frame loop shared by every model: read, synthesize, write, pipelined so that
+// the three overlap (frame_pipeline.hpp); the output file appears only when every frame
+// succeeded.
 template <typename Synthesize>
 int process_video(const ApplyOptions& o, const VideoInfo& out_override, bool override_format, Synthesize&& synth,
                   const char* model) {
@@ -106,16 +108,16 @@ int process_video(const ApplyOptions& o, const VideoInfo& out_override, bool ove
     if (override_format) out_info.format = out_override.format;
     const bool y4m_out = o.output != "-" ? has_y4m_extension(o.output) : reader.info().y4m;
     VideoWriter writer(o.output, out_info, y4m_out);
-    FrameBuffer in, out;
-    int k = 0;
-    while (reader.read(in)) {
-        if (out.width() != in.width() || out.height() != in.height() || out.format().chroma != out_info.format.chroma ||
-            out.format().bit_depth != out_info.format.bit_depth)
-            out = FrameBuffer(in.width(), in.height(), out_info.format);
-        synth(k, reader.info(), in, out);
-        writer.write(out);
-        k++;
-    }
+    const int k = run_frame_pipeline(
+        [&](FrameBuffer& in) { return reader.read(in); },
+        [&](int k, FrameSlot& slot) {
+            FrameBuffer &in = slot.in, &out = slot.out;
+            if (out.width() != in.width() || out.height() != in.height() ||
+                out.format().chroma != out_info.format.chroma || out.format().bit_depth != out_info.format.bit_depth)
+                out = FrameBuffer(in.width(), in.height(), out_info.format);
+            synth(k, reader.info(), in, out);
+        },
+        [&](const FrameBuffer& out) { writer.write(out); });
     if (k == 0) throw Error(ErrorCode::kIo, "input '" + o.input + "' holds no frame");
     writer.commit();
     if (!o.quiet && o.output != "-")
@@ -140,6 +142,7 @@ int run_av1(const ApplyOptions& o) {
         if (frames.empty()) throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' has no AV1 frame");
     }
     const bool single = frames.size() == 1;
+    av1::Av1Synthesizer synthesizer(o.threads);
     return process_video(
         o, {}, false,
         [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
@@ -166,7 +169,7 @@ int run_av1(const ApplyOptions& o) {
             if (mc < 0) mc = 2;  // unspecified
             // filmgrn1 tables cannot carry this flag (libaom's reader leaves it 0)
             if (o.clip_to_restricted_range >= 0) p.clip_to_restricted_range = o.clip_to_restricted_range;
-            av1::apply_film_grain(p, in.view(), out.view(), mc);
+            synthesizer.apply(p, in.view(), out.view(), mc);
         },
         "AV1 film grain");
 }
@@ -233,28 +236,19 @@ int run_apply(const ApplyOptions& o) {
         fo.coded_height = ci.height;
     }
     fo.passthrough_invalid = o.on_invalid == "passthrough";
+    fo.threads = o.threads;
     FgcSynthesizer synth(fo);
-
-    VideoReader reader(o.input, o.raw.to_info());
-    const bool y4m_out = o.output != "-" ? has_y4m_extension(o.output) : reader.info().y4m;
-    VideoWriter writer(o.output, reader.info(), y4m_out);
-    FrameBuffer in, out;
-    int k = 0;
-    while (reader.read(in)) {
-        if (out.byte_size() != in.byte_size()) out = FrameBuffer(in.width(), in.height(), in.format());
-        FgcPictureIds ids;
-        if (auto sei = source->sei_for(k, ids)) synth.receive_sei(*sei, codec);
-        FgcFrameResult r = synth.apply(in.view(), out.view(), ids);
-        if (!r.message.empty() && !o.quiet) std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
-        writer.write(out);
-        k++;
-    }
-    if (k == 0) throw Error(ErrorCode::kIo, "input '" + o.input + "' holds no frame");
-    writer.commit();
-    if (!o.quiet && o.output != "-")
-        std::fprintf(stderr, "filmgrain: %d frame(s) written to %s (flavour %s)\n", k, o.output.c_str(),
-                     flavour_name(flavour).c_str());
-    return 0;
+    const std::string model = "flavour " + flavour_name(flavour);
+    return process_video(
+        o, {}, false,
+        [&](int k, const VideoInfo&, FrameBuffer& in, FrameBuffer& out) {
+            FgcPictureIds ids;
+            if (auto sei = source->sei_for(k, ids)) synth.receive_sei(*sei, codec);
+            FgcFrameResult r = synth.apply(in.view(), out.view(), ids);
+            if (!r.message.empty() && !o.quiet)
+                std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
+        },
+        model.c_str());
 }
 
 }  // namespace
@@ -281,7 +275,9 @@ void register_apply(CLI::App& app) {
     sub->add_option("--coded-size", o->coded_size,
                     "vtm: the stream's coded picture size WxH (SPS), which picks HM's block size "
                     "(default: the picture size rounded up to a multiple of 16)");
-    sub->add_option("--threads", o->threads, "worker threads (0: all cores)");
+    sub->add_option("--threads", o->threads,
+                    "synthesis threads per frame, rdd5/vtm/AV1 (0: all cores; the output is the same for any count)")
+        ->check(CLI::NonNegativeNumber);
     sub->add_option("--seed", o->seed, "vfgs: the reference's -r seed (absent: its default state 0xDEADBEEF)");
     sub->add_option("--gain", o->gain, "vfgs: the reference's --gain in percent")->capture_default_str();
     sub->add_option("--output-pix-fmt", o->output_pix_fmt, "vfgs: output format, e.g. yuv420p for 8-bit output of 10-bit input");

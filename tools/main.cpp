@@ -1,11 +1,24 @@
 // The `filmgrain` command. Each subcommand lives in its own file (cmd_*.cpp).
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 
 #include "cli_common.hpp"
+#include "core/simd_targets.hpp"
 #include "filmgrain/error.hpp"
 
 int main(int argc, char** argv) {
+    // FILMGRAIN_SIMD_TARGET=AVX2|SSE4|EMU128|...: run the optimized kernels for that vector
+    // target only (verification and benchmarks; the output is the same for every target).
+    if (const char* target = std::getenv("FILMGRAIN_SIMD_TARGET"); target && *target) {
+        if (!filmgrain::simd::force_target(std::string(target))) {
+            std::string names;
+            for (const auto& t : filmgrain::simd::available_targets()) names += " " + t.name;
+            std::fprintf(stderr, "filmgrain: error: FILMGRAIN_SIMD_TARGET=%s is not available (available:%s)\n",
+                         target, names.c_str());
+            return 2;
+        }
+    }
     CLI::App app{"filmgrain: film grain synthesis bit-exact with the FGC SEI (RDD 5, HM/VTM) and AV1 references.\n"
                  "Without a subcommand it runs the demo: grain on a built-in clip, output and PNG preview in ./out/"};
     app.require_subcommand(0, 1);

@@ -6,18 +6,31 @@
 #include <string>
 
 #include "av1/block_synthesis.hpp"
+#include "av1/noise_stripe_rows.hpp"
 #include "av1/params_validation.hpp"
+#include "av1/simd/av1_kernels.hpp"
+#include "core/thread_pool.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::av1 {
 
 Av1SynthesisContext::Av1SynthesisContext(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width,
-                                         int height, int matrix_coefficients)
-    : p_(p), format_(format), bit_depth_(bit_depth), width_(width), height_(height) {
+                                         int height, int matrix_coefficients) {
+    reset(p, format, bit_depth, width, height, matrix_coefficients);
+}
+
+void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width,
+                                int height, int matrix_coefficients) {
     validate_params(p, format, bit_depth);
     if (width <= 0 || height <= 0)
         throw Error(ErrorCode::kInvalidArgument,
                     "frame size " + std::to_string(width) + "x" + std::to_string(height) + " must be positive");
+    p_ = p;
+    format_ = format;
+    bit_depth_ = bit_depth;
+    width_ = width;
+    height_ = height;
+    has_grain_[0] = has_grain_[1] = has_grain_[2] = false;
     subx_ = chroma_shift_x(format);
     suby_ = chroma_shift_y(format);
     clip_ = clip_limits(p.clip_to_restricted_range != 0, bit_depth, matrix_coefficients);
@@ -29,20 +42,26 @@ Av1SynthesisContext::Av1SynthesisContext(const Av1FilmGrainParams& p, ChromaForm
         has_grain_[2] = p.num_cr_points > 0 || p.chroma_scaling_from_luma;
     }
     // 7.18.3.3: the luma template is also the source of the chroma filters'
-    // luma term, so it is built whenever any plane gets grain.
-    templates_[0] = generate_luma_template(p, bit_depth);
+    // luma term, so it is built whenever any plane gets grain. Built in place, so a
+    // context reset for the next frame reuses its storage.
+    generate_luma_template(p, bit_depth, templates_[0]);
     for (int pl = 1; pl <= 2; ++pl)
-        if (has_grain_[pl]) templates_[pl] = generate_chroma_template(p, bit_depth, pl, subx_, suby_, templates_[0]);
+        if (has_grain_[pl]) generate_chroma_template(p, bit_depth, pl, subx_, suby_, templates_[0], templates_[pl]);
 
-    scaling_[0] = ScalingLookup(p.point_y_value.data(), p.point_y_scaling.data(), p.num_y_points, bit_depth);
+    scaling_[0].assign(p.point_y_value.data(), p.point_y_scaling.data(), p.num_y_points, bit_depth);
     if (p.chroma_scaling_from_luma) {
         scaling_[1] = scaling_[2] = scaling_[0];
     } else {
-        scaling_[1] = ScalingLookup(p.point_cb_value.data(), p.point_cb_scaling.data(), p.num_cb_points, bit_depth);
-        scaling_[2] = ScalingLookup(p.point_cr_value.data(), p.point_cr_scaling.data(), p.num_cr_points, bit_depth);
+        scaling_[1].assign(p.point_cb_value.data(), p.point_cb_scaling.data(), p.num_cb_points, bit_depth);
+        scaling_[2].assign(p.point_cr_value.data(), p.point_cr_scaling.data(), p.num_cr_points, bit_depth);
     }
     chroma_index_[1] = {p.chroma_scaling_from_luma != 0, p.cb_mult - 128, p.cb_luma_mult - 128, p.cb_offset - 256};
     chroma_index_[2] = {p.chroma_scaling_from_luma != 0, p.cr_mult - 128, p.cr_luma_mult - 128, p.cr_offset - 256};
+    for (int pl = 0; pl < 3; ++pl) {
+        if (!has_grain_[pl]) continue;
+        scaling32_[pl].resize(std::size_t(1) << bit_depth);
+        for (int i = 0; i < (1 << bit_depth); ++i) scaling32_[pl][std::size_t(i)] = scaling_[pl](i);
+    }
 }
 
 int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
@@ -96,6 +115,100 @@ void Av1SynthesisContext::apply_stripe(const FrameView& src, const FrameView& ds
     }
 }
 
+template <typename Pixel>
+void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const FrameView& dst, int stripe,
+                                                 StripeScratch& scratch) const {
+    const int scaling_shift = p_.grain_scaling_minus_8 + 8;
+    const bool overlap = p_.overlap_flag != 0;
+    const int luma_y0 = stripe * kBlockSize;
+    const int luma_rows = std::min(kBlockSize, height_ - luma_y0);
+    const int gmin = -(128 << (bit_depth_ - 8)), gmax = (128 << (bit_depth_ - 8)) - 1;
+    const std::size_t pitch = std::size_t(noise_stripe_width(width_, 0));
+    if (scratch.noise.size() < pitch * kBlockSize) scratch.noise.resize(pitch * kBlockSize);
+    if (scratch.previous.size() < pitch * 2) scratch.previous.resize(pitch * 2);
+
+    // The stripe's noise for one plane in scratch.noise (rows of `pitch`), vertically
+    // cross-faded with the bottom rows of the previous stripe as build_stripe_noise does.
+    auto build_noise = [&](int pl, int sx, int sy, int rows) {
+        build_noise_stripe_rows(templates_[pl], p_.grain_seed, stripe, width_, sx, sy, overlap, bit_depth_, 0, rows,
+                                scratch.noise.data(), std::ptrdiff_t(pitch));
+        if (!overlap || stripe == 0) return;
+        const int stripe_h = kBlockSize >> sy;
+        const int overlap_rows = std::min(rows, 2 >> sy);
+        build_noise_stripe_rows(templates_[pl], p_.grain_seed, stripe - 1, width_, sx, sy, overlap, bit_depth_,
+                                stripe_h, stripe_h + overlap_rows, scratch.previous.data(), std::ptrdiff_t(pitch));
+        const int pw = plane_width(format_, pl, width_);
+        for (int i = 0; i < overlap_rows; ++i) {
+            const int w_old = sy ? 23 : (i == 0 ? 27 : 17), w_new = sy ? 22 : (i == 0 ? 17 : 27);
+            simd::cross_fade_row(scratch.previous.data() + pitch * i, scratch.noise.data() + pitch * i, pw, w_old,
+                                 w_new, gmin, gmax);
+        }
+    };
+
+    // Chroma first: it reads the clean luma of this stripe (in-place safety, as above).
+    for (int pl = 1; pl < num_planes(format_); ++pl) {
+        const int pw = plane_width(format_, pl, width_);
+        const int ph = plane_height(format_, pl, height_);
+        const int y0 = luma_y0 >> suby_;
+        const int rows = std::min((luma_rows + suby_) >> suby_, ph - y0);
+        const PlaneView& s = src.planes[pl];
+        const PlaneView& d = dst.planes[pl];
+        if (!has_grain_[pl]) {
+            if (s.data != d.data)
+                for (int y = y0; y < y0 + rows; ++y)
+                    std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(pw));
+            continue;
+        }
+        if (rows <= 0) continue;
+        build_noise(pl, subx_, suby_, rows);
+        for (int i = 0; i < rows; ++i) {
+            const int y = y0 + i;
+            const int16_t* nz = scratch.noise.data() + pitch * std::size_t(i);
+            if constexpr (sizeof(Pixel) == 1)
+                simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
+                                          width_, nz, pw, subx_, chroma_index_[pl], scaling32_[pl].data(),
+                                          scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
+            else
+                simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
+                                           width_, nz, pw, subx_, chroma_index_[pl], scaling32_[pl].data(),
+                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
+        }
+    }
+
+    const PlaneView& s = src.planes[0];
+    const PlaneView& d = dst.planes[0];
+    if (!has_grain_[0]) {
+        if (s.data != d.data)
+            for (int y = luma_y0; y < luma_y0 + luma_rows; ++y)
+                std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(width_));
+        return;
+    }
+    build_noise(0, 0, 0, luma_rows);
+    for (int i = 0; i < luma_rows; ++i) {
+        const int y = luma_y0 + i;
+        const int16_t* nz = scratch.noise.data() + pitch * std::size_t(i);
+        if constexpr (sizeof(Pixel) == 1)
+            simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling32_[0].data(), scaling_shift,
+                                    clip_.min_value, clip_.max_luma);
+        else
+            simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling32_[0].data(),
+                                     scaling_shift, clip_.min_value, clip_.max_luma);
+    }
+}
+
+void Av1SynthesisContext::apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1, Kernels kernels,
+                                        StripeScratch& scratch) const {
+    if (kernels == Kernels::kReference) return apply_stripes(src, dst, s0, s1);
+    s0 = std::max(s0, 0);
+    s1 = std::min(s1, stripe_count());
+    for (int s = s0; s < s1; ++s) {
+        if (bit_depth_ > 8)
+            apply_stripe_optimized<uint16_t>(src, dst, s, scratch);
+        else
+            apply_stripe_optimized<uint8_t>(src, dst, s, scratch);
+    }
+}
+
 void Av1SynthesisContext::apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1) const {
     s0 = std::max(s0, 0);
     s1 = std::min(s1, stripe_count());
@@ -140,6 +253,61 @@ void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const F
         throw Error(ErrorCode::kInvalidArgument, "src and dst frames differ in format, bit depth or size");
     const Av1SynthesisContext ctx(p, src.format, src.bit_depth, src.width, src.height, matrix_coefficients);
     ctx.apply_stripes(src, dst, 0, ctx.stripe_count());
+}
+
+Av1Synthesizer::Av1Synthesizer(int threads, Kernels kernels)
+    : kernels_(kernels), pool_(std::make_unique<ThreadPool>(threads)), scratch_(std::size_t(pool_->size())) {}
+
+Av1Synthesizer::~Av1Synthesizer() = default;
+
+int Av1Synthesizer::threads() const { return pool_->size(); }
+
+std::size_t Av1Synthesizer::working_bytes() const {
+    std::size_t n = 0;
+    for (const auto& s : scratch_) n += (s.noise.capacity() + s.previous.capacity()) * sizeof(int16_t);
+    if (context_) n += context_->table_bytes();
+    return n;
+}
+
+std::size_t Av1SynthesisContext::table_bytes() const {
+    std::size_t n = 0;
+    for (int pl = 0; pl < 3; ++pl)
+        n += templates_[pl].samples.capacity() * sizeof(int16_t) + scaling32_[pl].capacity() * sizeof(int32_t) +
+             scaling_[pl].table8().capacity() + (std::size_t(1) << bit_depth_);
+    return n;
+}
+
+void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
+                           int matrix_coefficients) {
+    check_frame_view(src, "src");
+    check_frame_view(dst, "dst");
+    if (src.format != dst.format || src.bit_depth != dst.bit_depth || src.width != dst.width ||
+        src.height != dst.height)
+        throw Error(ErrorCode::kInvalidArgument, "src and dst frames differ in format, bit depth or size");
+    if (!context_)
+        context_ = std::make_unique<Av1SynthesisContext>(p, src.format, src.bit_depth, src.width, src.height,
+                                                         matrix_coefficients);
+    else
+        context_->reset(p, src.format, src.bit_depth, src.width, src.height, matrix_coefficients);
+    const Av1SynthesisContext& ctx = *context_;
+    // Every worker's scratch is sized here, on the calling thread, so that a worker that
+    // happened to get no stripe in the first frames cannot allocate later.
+    if (kernels_ == Kernels::kOptimized) {
+        const std::size_t pitch = std::size_t(noise_stripe_width(src.width, 0));
+        for (auto& s : scratch_) {
+            if (s.noise.size() < pitch * kBlockSize) s.noise.resize(pitch * kBlockSize);
+            if (s.previous.size() < pitch * 2) s.previous.resize(pitch * 2);
+        }
+    }
+    pool_->parallel_for(ctx.stripe_count(), [&](int stripe, int worker) {
+        ctx.apply_stripes(src, dst, stripe, stripe + 1, kernels_, scratch_[std::size_t(worker)]);
+    });
+}
+
+void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
+                      int matrix_coefficients, int threads) {
+    Av1Synthesizer synth(threads);
+    synth.apply(p, src, dst, matrix_coefficients);
 }
 
 }  // namespace filmgrain::av1

@@ -6,13 +6,32 @@
 // stripe ranges may therefore run concurrently and gives the same output in any
 // order or partition.
 #pragma once
+#include <memory>
+#include <vector>
+
 #include "av1/grain_blending.hpp"
 #include "av1/grain_template_generation.hpp"
 #include "av1/scaling_lookup.hpp"
 #include "filmgrain/av1_params.hpp"
 #include "filmgrain/frame.hpp"
 
+namespace filmgrain {
+class ThreadPool;
+}
+
 namespace filmgrain::av1 {
+
+// Which implementation of the per-stripe stages runs: the scalar reference (the spec's
+// process, kept as the bit-exact reference) or the optimized one (vector kernels chosen at
+// run time for the CPU, allocation-free stripe buffers). Both give identical output.
+enum class Kernels { kOptimized, kReference };
+
+// Working memory of the optimized path for one thread: the noise rows of one stripe of
+// the widest plane and the previous stripe's overlap rows. Reused across stripes and frames.
+struct StripeScratch {
+    std::vector<int16_t> noise;
+    std::vector<int16_t> previous;
+};
 
 class Av1SynthesisContext {
 public:
@@ -21,12 +40,23 @@ public:
     Av1SynthesisContext(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width, int height,
                         int matrix_coefficients);
 
+    // Rebuilds the context for another frame, reusing its storage (no allocation once it
+    // has held a frame of the same bit depth).
+    void reset(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width, int height,
+               int matrix_coefficients);
+
     int stripe_count() const;
+    // Bytes held by templates and scaling tables.
+    std::size_t table_bytes() const;
 
     // Processes luma rows [32*s0, 32*s1) and the chroma rows co-sited with them.
     // dst may be src (in place). Planes that get no grain are copied when dst is
     // not src. The views must match the context's format, bit depth and size.
     void apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1) const;
+    // The same with a chosen implementation and caller-owned scratch (no allocation once the
+    // scratch has grown to the frame width). Concurrent calls need one scratch each.
+    void apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1, Kernels kernels,
+                       StripeScratch& scratch) const;
 
     const Av1FilmGrainParams& params() const { return p_; }
     const GrainTemplate& grain_template(int plane) const { return templates_[plane]; }
@@ -36,16 +66,19 @@ public:
 private:
     template <typename Pixel>
     void apply_stripe(const FrameView& src, const FrameView& dst, int stripe) const;
+    template <typename Pixel>
+    void apply_stripe_optimized(const FrameView& src, const FrameView& dst, int stripe, StripeScratch& scratch) const;
 
     Av1FilmGrainParams p_;
-    ChromaFormat format_;
-    int bit_depth_, width_, height_;
+    ChromaFormat format_ = ChromaFormat::k420;
+    int bit_depth_ = 8, width_ = 0, height_ = 0;
     int subx_ = 0, suby_ = 0;
     ClipLimits clip_;
     GrainTemplate templates_[3];
     ScalingLookup scaling_[3];  // [1], [2] alias luma's function with chroma_scaling_from_luma
     bool has_grain_[3] = {false, false, false};
     ChromaScalingIndex chroma_index_[3];
+    std::vector<int32_t> scaling32_[3];  // scaling_[pl] widened for vector gathers
 };
 
 // Checks that a view is usable for the given format/bit depth/size (throws
@@ -57,5 +90,32 @@ void check_frame_view(const FrameView& v, const char* name);
 // invalid parameters or views.
 void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
                       int matrix_coefficients);
+
+// A stream-level synthesizer: owns a thread pool (`threads` workers including the caller;
+// 0 = every hardware thread) and per-thread stripe scratch, so that frames after the first
+// are synthesized without growing memory. The output does not depend on the thread count
+// or on `kernels`. One instance per stream; instances share nothing.
+class Av1Synthesizer {
+public:
+    explicit Av1Synthesizer(int threads = 0, Kernels kernels = Kernels::kOptimized);
+    ~Av1Synthesizer();
+    Av1Synthesizer(const Av1Synthesizer&) = delete;
+    Av1Synthesizer& operator=(const Av1Synthesizer&) = delete;
+
+    void apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst, int matrix_coefficients);
+    int threads() const;
+    // Working memory held: templates, scaling tables and every thread's stripe scratch.
+    std::size_t working_bytes() const;
+
+private:
+    Kernels kernels_;
+    std::unique_ptr<Av1SynthesisContext> context_;
+    std::unique_ptr<ThreadPool> pool_;
+    std::vector<StripeScratch> scratch_;
+};
+
+// apply_film_grain with `threads` stripe workers (0 = every hardware thread).
+void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
+                      int matrix_coefficients, int threads);
 
 }  // namespace filmgrain::av1

@@ -38,11 +38,18 @@ void fill_white_noise(GrainTemplate& t, uint16_t seed, bool enabled, int bit_dep
 }  // namespace
 
 GrainTemplate generate_luma_template(const Av1FilmGrainParams& p, int bit_depth) {
-    GrainTemplate t{kLumaTemplateWidth, kLumaTemplateHeight,
-                    std::vector<int16_t>(static_cast<std::size_t>(kLumaTemplateWidth) * kLumaTemplateHeight)};
+    GrainTemplate t;
+    generate_luma_template(p, bit_depth, t);
+    return t;
+}
+
+void generate_luma_template(const Av1FilmGrainParams& p, int bit_depth, GrainTemplate& t) {
+    t.width = kLumaTemplateWidth;
+    t.height = kLumaTemplateHeight;
+    t.samples.resize(static_cast<std::size_t>(kLumaTemplateWidth) * kLumaTemplateHeight);
     const bool enabled = p.num_y_points > 0;
     fill_white_noise(t, luma_template_seed(p.grain_seed), enabled, bit_depth, p.grain_scale_shift);
-    if (!enabled) return t;
+    if (!enabled) return;
 
     // Causal AR filter over the already-filtered neighbours: rows above (full
     // width 2*lag+1) and the samples to the left on the current row, in raster
@@ -60,20 +67,28 @@ GrainTemplate generate_luma_template(const Av1FilmGrainParams& p, int bit_depth)
                 }
             t.ref(y, x) = static_cast<int16_t>(std::clamp(t.at(y, x) + round2(sum, shift), r.min, r.max));
         }
-    return t;
 }
 
 GrainTemplate generate_chroma_template(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
                                        int subsampling_y, const GrainTemplate& luma) {
+    GrainTemplate t;
+    generate_chroma_template(p, bit_depth, plane, subsampling_x, subsampling_y, luma, t);
+    return t;
+}
+
+void generate_chroma_template(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
+                              int subsampling_y, const GrainTemplate& luma, GrainTemplate& t) {
     const int w = subsampling_x ? kSubsampledTemplateWidth : kLumaTemplateWidth;
     const int h = subsampling_y ? kSubsampledTemplateHeight : kLumaTemplateHeight;
-    GrainTemplate t{w, h, std::vector<int16_t>(static_cast<std::size_t>(w) * h)};
+    t.width = w;
+    t.height = h;
+    t.samples.resize(static_cast<std::size_t>(w) * h);
 
     const int num_points = plane == 1 ? p.num_cb_points : p.num_cr_points;
     const bool enabled = num_points > 0 || p.chroma_scaling_from_luma;
     const uint16_t seed = plane == 1 ? cb_template_seed(p.grain_seed) : cr_template_seed(p.grain_seed);
     fill_white_noise(t, seed, enabled, bit_depth, p.grain_scale_shift);
-    if (!enabled) return t;
+    if (!enabled) return;
 
     const auto& coeffs = plane == 1 ? p.ar_coeffs_cb_plus_128 : p.ar_coeffs_cr_plus_128;
     const int lag = p.ar_coeff_lag;
@@ -104,7 +119,6 @@ GrainTemplate generate_chroma_template(const Av1FilmGrainParams& p, int bit_dept
                 }
             t.ref(y, x) = static_cast<int16_t>(std::clamp(t.at(y, x) + round2(sum, shift), r.min, r.max));
         }
-    return t;
 }
 
 }  // namespace filmgrain::av1

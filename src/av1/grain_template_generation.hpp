@@ -32,11 +32,15 @@ struct GrainTemplate {
 // LumaGrain (7.18.3.3). All zero when num_y_points == 0 (the spec then draws no
 // random numbers, and no luma grain is ever used).
 GrainTemplate generate_luma_template(const Av1FilmGrainParams& p, int bit_depth);
+// The same into `out`, reusing its storage.
+void generate_luma_template(const Av1FilmGrainParams& p, int bit_depth, GrainTemplate& out);
 
 // CbGrain (plane 1) or CrGrain (plane 2). Sized by the subsampling; includes the
 // co-located luma term of the AR filter when num_y_points > 0. Zero when the
 // plane has no scaling points and chroma_scaling_from_luma is 0.
 GrainTemplate generate_chroma_template(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
                                        int subsampling_y, const GrainTemplate& luma);
+void generate_chroma_template(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
+                              int subsampling_y, const GrainTemplate& luma, GrainTemplate& out);
 
 }  // namespace filmgrain::av1

@@ -1,14 +1,26 @@
 #include "av1/params_validation.hpp"
 
 #include <string>
+#include <utility>
 
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::av1 {
 namespace {
 
-void check_range(const std::string& field, long long value, long long lo, long long hi) {
-    if (value < lo || value > hi) throw Error(ErrorCode::kInvalidParams, out_of_range_message(field, value, lo, hi));
+// The field name is built only for the message: validation runs for every frame, and a
+// valid frame must not allocate (steady-state synthesis is allocation-free).
+inline std::string field_name(const char* name) { return name; }
+inline std::string field_name(const std::string& name) { return name; }
+template <typename F, typename = decltype(std::declval<F>()())>
+std::string field_name(const F& make) {
+    return make();
+}
+
+template <typename Name>
+void check_range(const Name& field, long long value, long long lo, long long hi) {
+    if (value < lo || value > hi)
+        throw Error(ErrorCode::kInvalidParams, out_of_range_message(field_name(field), value, lo, hi));
 }
 
 std::string indexed(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
@@ -24,7 +36,7 @@ void check_points(const char* value_name, const char* scaling_name, const int* v
             if (i > 0) msg += " (point values must be strictly increasing)";
             throw Error(ErrorCode::kInvalidParams, msg);
         }
-        check_range(indexed(scaling_name, i), scalings[i], 0, 255);
+        check_range([&] { return indexed(scaling_name, i); }, scalings[i], 0, 255);
     }
 }
 
@@ -53,13 +65,13 @@ void validate_params(const Av1FilmGrainParams& p, ChromaFormat format, int bit_d
 
     // num_cb_points / num_cr_points are not signalled (inferred 0) for
     // monochrome, with chroma_scaling_from_luma, and for 4:2:0 without luma points.
-    std::string why;
+    const char* why = "";
     if (mono) why = " (monochrome frame)";
     else if (p.chroma_scaling_from_luma) why = " (chroma_scaling_from_luma = 1)";
     else if (is420 && p.num_y_points == 0) why = " (4:2:0 with num_y_points = 0)";
-    const int max_chroma_points = why.empty() ? 10 : 0;
-    check_range("num_cb_points" + why, p.num_cb_points, 0, max_chroma_points);
-    check_range("num_cr_points" + why, p.num_cr_points, 0, max_chroma_points);
+    const int max_chroma_points = *why ? 0 : 10;
+    check_range([&] { return std::string("num_cb_points") + why; }, p.num_cb_points, 0, max_chroma_points);
+    check_range([&] { return std::string("num_cr_points") + why; }, p.num_cr_points, 0, max_chroma_points);
     check_points("point_cb_value", "point_cb_scaling", p.point_cb_value.data(), p.point_cb_scaling.data(),
                  p.num_cb_points);
     check_points("point_cr_value", "point_cr_scaling", p.point_cr_value.data(), p.point_cr_scaling.data(),
@@ -75,15 +87,15 @@ void validate_params(const Av1FilmGrainParams& p, ChromaFormat format, int bit_d
     check_range("ar_coeff_lag", p.ar_coeff_lag, 0, 3);
     if (p.num_y_points > 0)
         for (int i = 0; i < p.num_pos_luma(); ++i)
-            check_range(indexed("ar_coeffs_y_plus_128", i), p.ar_coeffs_y_plus_128[static_cast<std::size_t>(i)], 0,
+            check_range([&] { return indexed("ar_coeffs_y_plus_128", i); }, p.ar_coeffs_y_plus_128[static_cast<std::size_t>(i)], 0,
                         255);
     if (p.chroma_scaling_from_luma || p.num_cb_points > 0)
         for (int i = 0; i < p.num_pos_chroma(); ++i)
-            check_range(indexed("ar_coeffs_cb_plus_128", i), p.ar_coeffs_cb_plus_128[static_cast<std::size_t>(i)], 0,
+            check_range([&] { return indexed("ar_coeffs_cb_plus_128", i); }, p.ar_coeffs_cb_plus_128[static_cast<std::size_t>(i)], 0,
                         255);
     if (p.chroma_scaling_from_luma || p.num_cr_points > 0)
         for (int i = 0; i < p.num_pos_chroma(); ++i)
-            check_range(indexed("ar_coeffs_cr_plus_128", i), p.ar_coeffs_cr_plus_128[static_cast<std::size_t>(i)], 0,
+            check_range([&] { return indexed("ar_coeffs_cr_plus_128", i); }, p.ar_coeffs_cr_plus_128[static_cast<std::size_t>(i)], 0,
                         255);
     check_range("ar_coeff_shift_minus_6", p.ar_coeff_shift_minus_6, 0, 3);
     check_range("grain_scale_shift", p.grain_scale_shift, 0, 3);

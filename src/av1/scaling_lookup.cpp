@@ -3,8 +3,15 @@
 
 namespace filmgrain::av1 {
 
-ScalingLookup::ScalingLookup(const int* point_value, const int* point_scaling, int count, int bit_depth)
-    : bit_depth_(bit_depth), lut8_(256, 0), full_(static_cast<std::size_t>(1) << bit_depth, 0) {
+ScalingLookup::ScalingLookup(const int* point_value, const int* point_scaling, int count, int bit_depth) {
+    assign(point_value, point_scaling, count, bit_depth);
+}
+
+void ScalingLookup::assign(const int* point_value, const int* point_scaling, int count, int bit_depth) {
+    // assign() keeps the vectors' capacity, so rebuilding per frame does not allocate.
+    bit_depth_ = bit_depth;
+    lut8_.assign(256, 0);
+    full_.assign(static_cast<std::size_t>(1) << bit_depth, 0);
     if (count > 0) {
         // Constant before the first point and after the last one.
         for (int x = 0; x < point_value[0]; ++x) lut8_[static_cast<std::size_t>(x)] = static_cast<uint8_t>(point_scaling[0]);

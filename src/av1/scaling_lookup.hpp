@@ -13,6 +13,8 @@ public:
     // Builds the function from `count` (value, scaling) points, values strictly
     // increasing in 0..255. count == 0 gives a function that is 0 everywhere.
     ScalingLookup(const int* point_value, const int* point_scaling, int count, int bit_depth);
+    // The same, rebuilding this object in place (reusing its storage).
+    void assign(const int* point_value, const int* point_scaling, int count, int bit_depth);
 
     // scale_lut(plane, index) for index in 0..(1 << bit_depth) - 1.
     int operator()(int index) const { return full_[static_cast<std::size_t>(index)]; }

@@ -4,13 +4,24 @@
 // order or in parallel with identical output.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "fgc/params_resolution.hpp"
+#include "fgc/simd/fgc_kernels.hpp"
 #include "fgc/template_generation.hpp"
 #include "filmgrain/frame.hpp"
 
+namespace filmgrain {
+class ThreadPool;
+}
+
 namespace filmgrain::fgc {
+
+// Which implementation of the per-stripe stages runs: the scalar reference stages
+// (local_adaptation, deblocking, blending: the bit-exact references) or their optimized
+// twins (fgc/simd, vector kernels chosen at run time). Both give identical output.
+enum class Kernels { kOptimized, kReference };
 
 // The block size used for local adaptation and deblocking: RDD 5 always 8; HM/VTM 8 up to
 // 1920x1080 luma samples of the coded picture, 16 up to 3840x2160, 32 above (deriveFGSBlkSize).
@@ -18,8 +29,10 @@ int default_block_size(FgcFlavour flavour, int luma_width, int luma_height);
 
 class FgcFrameSynthesis {
 public:
-    // block_size: 8, 16 or 32.
-    FgcFrameSynthesis(FgcFlavour flavour, int block_size);
+    // block_size: 8, 16 or 32. threads: stripe workers including the caller (0 = every
+    // hardware thread); the output is the same for any count.
+    FgcFrameSynthesis(FgcFlavour flavour, int block_size, int threads = 1, Kernels kernels = Kernels::kOptimized);
+    ~FgcFrameSynthesis();
 
     // Builds whatever templates `params` needs (the only allocation after the first frame
     // of a parameter set). Not thread-safe; do it before synthesizing stripes.
@@ -32,16 +45,32 @@ public:
     int block_size() const { return block_size_; }
     const TemplateCache& templates() const { return cache_; }
 
+    int threads() const;
+    // Bytes of working memory held besides the templates (stripe buffers, block states).
+    std::size_t scratch_bytes() const;
+
 private:
+    // One thread's stripe buffers, grown on the first frame and reused.
+    struct Scratch {
+        std::vector<int32_t> stripe;      // reference path
+        std::vector<int16_t> stripe16;    // optimized path
+        std::vector<uint32_t> sums;       // block sums of one block row
+        std::vector<simd::BlockCopy> copies;  // template copies of one block row
+    };
     template <typename Pixel>
-    void apply_component(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
-                         uint32_t seed);
+    void reference_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
+                          int by, Scratch& scratch) const;
+    template <typename Pixel>
+    void optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
+                          int by, Scratch& scratch) const;
 
     FgcFlavour flavour_;
     int block_size_;
+    Kernels kernels_;
     TemplateCache cache_;
-    std::vector<uint32_t> states_;
-    std::vector<int32_t> stripe_;
+    std::unique_ptr<ThreadPool> pool_;
+    std::vector<uint32_t> states_[3];
+    std::vector<Scratch> scratch_;
 };
 
 void copy_plane(const PlaneView& src, const PlaneView& dst, int bytes_per_sample);

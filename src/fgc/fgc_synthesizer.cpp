@@ -26,18 +26,53 @@ FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
 FgcSynthesizer::~FgcSynthesizer() = default;
 
 void FgcSynthesizer::receive_sei(const FgcParams& params, FgcCodec codec) {
-    pending_ = params;
+    pending_ = params;  // copy-assignment into kept storage: no allocation for a repeated SEI
+    has_pending_ = true;
     pending_codec_ = codec;
 }
 
 void FgcSynthesizer::reset() {
-    pending_.reset();
+    has_pending_ = false;
     active_.reset();
 }
 
 int FgcSynthesizer::templates_built() const { return synthesis_ ? synthesis_->templates().built_count() : 0; }
 
+std::size_t FgcSynthesizer::scratch_bytes() const { return synthesis_ ? synthesis_->scratch_bytes() : 0; }
+
 namespace {
+// A repeated SEI (encoders commonly send the same one with every picture) keeps the
+// active state, so its validation and resolution are not redone and nothing is allocated.
+bool same_sei(const FgcParams& a, const FgcParams& b) {
+    auto intervals_equal = [](const FgcComponentModel& x, const FgcComponentModel& y) {
+        if (x.comp_model_present_flag != y.comp_model_present_flag ||
+            x.num_model_values_minus1 != y.num_model_values_minus1 || x.intervals.size() != y.intervals.size())
+            return false;
+        for (std::size_t i = 0; i < x.intervals.size(); i++) {
+            const auto &u = x.intervals[i], &v = y.intervals[i];
+            if (u.intensity_interval_lower_bound != v.intensity_interval_lower_bound ||
+                u.intensity_interval_upper_bound != v.intensity_interval_upper_bound ||
+                u.comp_model_value != v.comp_model_value)
+                return false;
+        }
+        return true;
+    };
+    for (int c = 0; c < 3; c++)
+        if (!intervals_equal(a.comp[c], b.comp[c])) return false;
+    return a.film_grain_characteristics_cancel_flag == b.film_grain_characteristics_cancel_flag &&
+           a.film_grain_model_id == b.film_grain_model_id &&
+           a.separate_colour_description_present_flag == b.separate_colour_description_present_flag &&
+           a.film_grain_bit_depth_luma_minus8 == b.film_grain_bit_depth_luma_minus8 &&
+           a.film_grain_bit_depth_chroma_minus8 == b.film_grain_bit_depth_chroma_minus8 &&
+           a.film_grain_full_range_flag == b.film_grain_full_range_flag &&
+           a.film_grain_colour_primaries == b.film_grain_colour_primaries &&
+           a.film_grain_transfer_characteristics == b.film_grain_transfer_characteristics &&
+           a.film_grain_matrix_coeffs == b.film_grain_matrix_coeffs && a.blending_mode_id == b.blending_mode_id &&
+           a.log2_scale_factor == b.log2_scale_factor &&
+           a.film_grain_characteristics_persistence_flag == b.film_grain_characteristics_persistence_flag &&
+           a.film_grain_characteristics_repetition_period == b.film_grain_characteristics_repetition_period;
+}
+
 bool persists_beyond_picture(const FgcParams& p, FgcCodec codec) {
     if (codec == FgcCodec::kAvc) return p.film_grain_characteristics_repetition_period != 0;
     return p.film_grain_characteristics_persistence_flag;
@@ -72,11 +107,13 @@ void check_frame(const FrameView& src, const FrameView& dst) {
 FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids) {
     check_frame(src, dst);
     FgcFrameResult result;
-    if (pending_) {
+    if (has_pending_ && active_ && active_->codec == pending_codec_ && same_sei(active_->params, pending_)) {
+        has_pending_ = false;
+    } else if (has_pending_) {
         active_ = std::make_unique<Active>();
-        active_->params = *pending_;
+        active_->params = pending_;
         active_->codec = pending_codec_;
-        pending_.reset();
+        has_pending_ = false;
     } else if (active_ && options_.persistence == FgcPersistence::kSemantic &&
                !persists_beyond_picture(active_->params, active_->codec)) {
         // The SEI applied to its own picture only (H.274 persistence semantics).
@@ -119,7 +156,9 @@ FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst,
     const int bs = options_.block_size ? options_.block_size
                                        : fgc::default_block_size(options_.flavour, coded_w, coded_h);
     if (!synthesis_ || synthesis_->block_size() != bs)
-        synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(options_.flavour, bs);
+        synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(
+            options_.flavour, bs, options_.threads,
+            options_.reference_kernels ? fgc::Kernels::kReference : fgc::Kernels::kOptimized);
     int32_t pic_offset = ids.poc;
     if (options_.flavour == FgcFlavour::kRdd5) pic_offset = ids.poc + int32_t(uint32_t(ids.idr_pic_id) << 5);
     synthesis_->apply(*a.resolved, src, dst, pic_offset);

@@ -27,6 +27,12 @@ struct FgcOptions {
     // Invalid parameter sets: false -> apply() throws; true -> the picture passes through
     // untouched, as the reference decoders output it, and the result carries the reason.
     bool passthrough_invalid = false;
+    // Stripe workers including the calling thread; 0 = every hardware thread. The output is
+    // identical for every count.
+    int threads = 0;
+    // true: run the scalar reference stages instead of the optimized (vector) ones; for
+    // verification and benchmarks, the output is identical.
+    bool reference_kernels = false;
 };
 
 struct FgcFrameResult {
@@ -52,11 +58,14 @@ public:
 
     const FgcOptions& options() const { return options_; }
     int templates_built() const;
+    // Working memory besides the templates (stripe buffers, block states), in bytes.
+    std::size_t scratch_bytes() const;
 
 private:
     struct Active;
     FgcOptions options_;
-    std::optional<FgcParams> pending_;
+    FgcParams pending_;  // valid when has_pending_; kept to reuse its storage
+    bool has_pending_ = false;
     FgcCodec pending_codec_ = FgcCodec::kHevc;
     std::unique_ptr<Active> active_;
     std::unique_ptr<fgc::FgcFrameSynthesis> synthesis_;

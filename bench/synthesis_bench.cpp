@@ -1,0 +1,141 @@
+// Per-frame synthesis time of both models (Google Benchmark): 1280x720, 1920x1080 and
+// 3840x2160, 8- and 10-bit 4:2:0, 1 and 2 threads, scalar reference vs optimized kernels.
+// Contexts are created once and reused, as a decoder would, so the numbers are the steady
+// state (templates built, buffers grown). Not part of the test suite.
+//
+//   build/filmgrain_bench [--benchmark_filter=Av1/1920] [--benchmark_repetitions=5]
+//   FILMGRAIN_SIMD_TARGET=SSE4 build/filmgrain_bench   # force a vector target
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <random>
+
+#include "av1/av1_synthesis.hpp"
+#include "core/frame_buffer.hpp"
+#include "core/simd_targets.hpp"
+#include "fgc/fgc_synthesizer.hpp"
+
+using namespace filmgrain;
+
+namespace {
+
+FrameBuffer picture(int w, int h, int bd) {
+    FrameBuffer b(w, h, PixelFormat{ChromaFormat::k420, bd});
+    std::mt19937 rng(1);
+    FrameView v = b.view();
+    // a smooth ramp with noise: blocks land in several intensity intervals
+    for (int p = 0; p < v.plane_count(); p++)
+        for (int y = 0; y < v.planes[p].height; y++)
+            for (int x = 0; x < v.planes[p].width; x++) {
+                const int value = ((x + y) * 255 / (v.planes[p].width + v.planes[p].height) + int(rng() % 16)) & 255;
+                if (bd > 8)
+                    v.planes[p].row<uint16_t>(y)[x] = uint16_t(value << (bd - 8));
+                else
+                    v.planes[p].row<uint8_t>(y)[x] = uint8_t(value);
+            }
+    return b;
+}
+
+FgcParams fgc_params(int bd) {
+    FgcParams p;
+    p.log2_scale_factor = 5;
+    for (int c = 0; c < 3; c++) {
+        p.comp[c].comp_model_present_flag = true;
+        p.comp[c].num_model_values_minus1 = 2;
+        p.comp[c].intervals = {{0, 100, {(110 - 20 * c) << (bd - 8), 8, 8}}, {101, 255, {(80 - 10 * c) << (bd - 8), 10, 6}}};
+    }
+    return p;
+}
+
+Av1FilmGrainParams av1_params() {
+    Av1FilmGrainParams p;
+    p.apply_grain = 1;
+    p.grain_seed = 1234;
+    p.num_y_points = 3;
+    p.point_y_value = {0, 128, 255};
+    p.point_y_scaling = {40, 70, 50};
+    p.num_cb_points = 2;
+    p.point_cb_value = {0, 255};
+    p.point_cb_scaling = {30, 40};
+    p.num_cr_points = 2;
+    p.point_cr_value = {0, 255};
+    p.point_cr_scaling = {35, 45};
+    p.grain_scaling_minus_8 = 3;
+    p.ar_coeff_lag = 3;
+    for (int i = 0; i < 24; i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i % 7) - 3;
+    for (int i = 0; i < 25; i++) p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i % 5) - 2;
+    for (int i = 0; i < 25; i++) p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i % 5) + 2;
+    p.ar_coeff_shift_minus_6 = 1;
+    p.cb_mult = 128 + 10, p.cb_luma_mult = 192, p.cb_offset = 256;
+    p.cr_mult = 128 - 10, p.cr_luma_mult = 180, p.cr_offset = 250;
+    p.overlap_flag = 1;
+    return p;
+}
+
+// args: width, height, bit depth, threads, optimized (0/1), flavour (0 rdd5, 1 vtm)
+void BM_Fgc(benchmark::State& state) {
+    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
+    FgcOptions o;
+    o.threads = int(state.range(3));
+    o.reference_kernels = state.range(4) == 0;
+    o.flavour = state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
+    FgcSynthesizer s(o);
+    s.receive_sei(fgc_params(bd));
+    FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
+    int poc = 0;
+    for (auto _ : state) {
+        s.apply(in.view(), out.view(), FgcPictureIds{poc++ & 255, 0});
+        benchmark::DoNotOptimize(out.bytes());
+    }
+    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// args: width, height, bit depth, threads, optimized (0/1)
+void BM_Av1(benchmark::State& state) {
+    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
+    av1::Av1Synthesizer s(int(state.range(3)), state.range(4) ? av1::Kernels::kOptimized : av1::Kernels::kReference);
+    Av1FilmGrainParams p = av1_params();
+    FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
+    for (auto _ : state) {
+        p.grain_seed = (p.grain_seed + 7391) & 0xFFFF;  // encoders change the seed every frame
+        s.apply(p, in.view(), out.view(), 1);
+        benchmark::DoNotOptimize(out.bytes());
+    }
+    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void sizes(benchmark::internal::Benchmark* b, bool flavours) {
+    const int dims[3][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
+    for (auto& d : dims)
+        for (int bd : {8, 10})
+            for (int threads : {1, 2})
+                for (int optimized : {0, 1})
+                    for (int flavour = 0; flavour <= (flavours ? 1 : 0); flavour++) {
+                        if (flavours)
+                            b->Args({d[0], d[1], bd, threads, optimized, flavour});
+                        else
+                            b->Args({d[0], d[1], bd, threads, optimized});
+                    }
+    b->ArgNames(flavours ? std::vector<std::string>{"w", "h", "bd", "threads", "optimized", "vtm"}
+                         : std::vector<std::string>{"w", "h", "bd", "threads", "optimized"});
+    b->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+BENCHMARK(BM_Fgc)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, true); });
+BENCHMARK(BM_Av1)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, false); });
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (const char* t = std::getenv("FILMGRAIN_SIMD_TARGET"))
+        if (!simd::force_target(std::string(t))) {
+            std::fprintf(stderr, "FILMGRAIN_SIMD_TARGET=%s is not available on this CPU\n", t);
+            return 2;
+        }
+    benchmark::AddCustomContext("simd_target", simd::dispatched_target());
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

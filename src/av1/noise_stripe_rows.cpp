@@ -1,0 +1,50 @@
+#include "av1/noise_stripe_rows.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "av1/block_synthesis.hpp"
+#include "av1/random_number.hpp"
+
+namespace filmgrain::av1 {
+
+int noise_stripe_width(int luma_width, int subsampling_x) {
+    const int block_w = kBlockSize >> subsampling_x;
+    const int copy_w = (kBlockSize + 2) >> subsampling_x;
+    return num_blocks_across(luma_width) * block_w + (copy_w - block_w);
+}
+
+void build_noise_stripe_rows(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
+                             int subsampling_y, bool overlap, int bit_depth, int row0, int row1, int16_t* out,
+                             std::ptrdiff_t out_stride) {
+    const int block_w = kBlockSize >> subsampling_x;
+    const int copy_w = (kBlockSize + 2) >> subsampling_x;
+    const int blocks = num_blocks_across(luma_width);
+    const int gmin = -(128 << (bit_depth - 8)), gmax = (128 << (bit_depth - 8)) - 1;
+    // Weights of the horizontal overlap columns: (left block, this block) per column.
+    const int w_old0 = subsampling_x ? 23 : 27, w_new0 = subsampling_x ? 22 : 17;
+    const int overlap_cols = overlap ? (subsampling_x ? 1 : 2) : 0;
+    RandomNumberGenerator rng(stripe_seed(grain_seed, stripe));
+    for (int b = 0; b < blocks; ++b) {
+        const int rand = rng.get(8);
+        const int offset_x = rand >> 4, offset_y = rand & 15;
+        const int tx = subsampling_x ? 6 + offset_x : 9 + offset_x * 2;
+        const int ty = subsampling_y ? 6 + offset_y : 9 + offset_y * 2;
+        const int x0 = b * block_w;
+        for (int i = row0; i < row1; ++i) {
+            int16_t* row = out + (i - row0) * out_stride + x0;
+            const int16_t* t = tmpl.samples.data() + static_cast<std::size_t>(ty + i) * tmpl.width + tx;
+            if (b > 0 && overlap_cols) {
+                const int16_t old0 = row[0], old1 = row[1];
+                std::memcpy(row, t, sizeof(int16_t) * static_cast<std::size_t>(copy_w));
+                row[0] = static_cast<int16_t>(std::clamp((old0 * w_old0 + t[0] * w_new0 + 16) >> 5, gmin, gmax));
+                if (overlap_cols == 2)
+                    row[1] = static_cast<int16_t>(std::clamp((old1 * 17 + t[1] * 27 + 16) >> 5, gmin, gmax));
+            } else {
+                std::memcpy(row, t, sizeof(int16_t) * static_cast<std::size_t>(copy_w));
+            }
+        }
+    }
+}
+
+}  // namespace filmgrain::av1

@@ -1,0 +1,199 @@
+// Highway implementations of av1_kernels.hpp, compiled once per target (foreach_target).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "av1/simd/av1_kernels_hwy.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+
+#include "av1/simd/av1_kernels.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace filmgrain::av1::simd {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Round2(scale * noise, shift) added to the sample and clipped, in int32 lanes (the
+// product needs up to 9 + 13 bits at 12-bit depth).
+template <class D, class V>
+HWY_INLINE V AddScaledNoise(D d, V orig, V scale, V noise, int shift, V round, V vmin, V vmax) {
+    const auto n = hn::ShiftRightSame(hn::Add(hn::Mul(scale, noise), round), shift);
+    (void)d;
+    return hn::Min(hn::Max(hn::Add(orig, n), vmin), vmax);
+}
+
+template <typename Pixel>
+void BlendLumaRow(const Pixel* src, Pixel* dst, const int16_t* noise, int width, const int32_t* scaling,
+                  int scaling_shift, int min_value, int max_value) {
+    const hn::ScalableTag<int32_t> d32;
+    const hn::Rebind<Pixel, decltype(d32)> dp;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
+    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
+    int x = 0;
+    for (; x + n <= width; x += n) {
+        const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x));
+        const auto scale = hn::GatherIndex(d32, scaling, orig);
+        const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x));
+        hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, scale, nz, scaling_shift, round, vmin, vmax)), dp,
+                   dst + x);
+    }
+    for (; x < width; ++x) {
+        const int orig = src[x];
+        const int v = orig + round2_signed(scaling[orig] * noise[x], scaling_shift);
+        dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
+    }
+}
+
+// Luma co-sited with chroma lanes [x, x + n): the average of each horizontal pair when
+// subsampled. Pairs are read as one wider lane and split, which needs no shuffles.
+template <typename Pixel, class D32>
+HWY_INLINE hn::Vec<D32> CositedLuma(D32 d32, const Pixel* luma, int x, int subsampling_x) {
+    if (!subsampling_x) return hn::PromoteTo(d32, hn::LoadU(hn::Rebind<Pixel, D32>(), luma + x));
+    using Wide = hwy::MakeWide<Pixel>;
+    const hn::Rebind<Wide, D32> dw;
+    const auto pairs = hn::LoadU(dw, reinterpret_cast<const Wide*>(luma + 2 * x));
+    constexpr int kBits = int(sizeof(Pixel) * 8);
+    const auto lo = hn::And(pairs, hn::Set(dw, Wide((Wide(1) << kBits) - 1)));
+    const auto hi = hn::ShiftRight<kBits>(pairs);
+    const auto avg = hn::ShiftRight<1>(hn::Add(hn::Add(lo, hi), hn::Set(dw, Wide(1))));
+    if constexpr (sizeof(Wide) == 4)
+        return hn::BitCast(d32, avg);
+    else
+        return hn::PromoteTo(d32, avg);
+}
+
+template <typename Pixel>
+void BlendChromaRow(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise, int width,
+                    int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling, int scaling_shift,
+                    int bit_depth, int min_value, int max_value) {
+    const hn::ScalableTag<int32_t> d32;
+    const hn::Rebind<Pixel, decltype(d32)> dp;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    const int pixel_max = (1 << bit_depth) - 1;
+    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
+    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
+    const auto luma_mult = hn::Set(d32, index.luma_mult), mult = hn::Set(d32, index.mult);
+    const auto offset = hn::Set(d32, index.offset * (1 << (bit_depth - 8)));
+    const auto vpixel_max = hn::Set(d32, pixel_max);
+    // The last chroma column of an odd-width subsampled picture pairs the last luma sample
+    // with itself; that column is left to the scalar tail.
+    const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
+    int x = 0;
+    for (; x + n <= vec_width; x += n) {
+        const auto avg_luma = CositedLuma(d32, luma, x, subsampling_x);
+        const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x));
+        hn::Vec<decltype(d32)> merged;
+        if (index.from_luma) {
+            merged = avg_luma;
+        } else {
+            const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
+            merged = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), vpixel_max);
+        }
+        const auto scale = hn::GatherIndex(d32, scaling, merged);
+        const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x));
+        hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, scale, nz, scaling_shift, round, vmin, vmax)), dp,
+                   dst + x);
+    }
+    for (; x < width; ++x) {
+        const int lx = x << subsampling_x;
+        int average_luma = luma[lx];
+        if (subsampling_x) {
+            const int rx = lx + 1 < luma_width ? lx + 1 : luma_width - 1;
+            average_luma = (average_luma + luma[rx] + 1) >> 1;
+        }
+        const int orig = src[x];
+        int merged;
+        if (index.from_luma) {
+            merged = average_luma;
+        } else {
+            const int combined = average_luma * index.luma_mult + orig * index.mult;
+            merged = (combined >> 6) + index.offset * (1 << (bit_depth - 8));
+            merged = merged < 0 ? 0 : merged > pixel_max ? pixel_max : merged;
+        }
+        const int v = orig + round2_signed(scaling[merged] * noise[x], scaling_shift);
+        dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
+    }
+}
+
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+                    int scaling_shift, int min_value, int max_value) {
+    BlendLumaRow<uint8_t>(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+                     int scaling_shift, int min_value, int max_value) {
+    BlendLumaRow<uint16_t>(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
+                      int width, int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling,
+                      int scaling_shift, int bit_depth, int min_value, int max_value) {
+    BlendChromaRow<uint8_t>(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
+                            bit_depth, min_value, max_value);
+}
+void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                       const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                       const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+    BlendChromaRow<uint16_t>(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
+                             bit_depth, min_value, max_value);
+}
+
+void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
+                  int gmax) {
+    const hn::ScalableTag<int32_t> d32;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    const auto wo = hn::Set(d32, old_weight), wn = hn::Set(d32, new_weight), r = hn::Set(d32, 16);
+    const auto lo = hn::Set(d32, gmin), hi = hn::Set(d32, gmax);
+    int x = 0;
+    for (; x + n <= width; x += n) {
+        const auto o = hn::PromoteTo(d32, hn::LoadU(d16, old_row + x));
+        const auto c = hn::PromoteTo(d32, hn::LoadU(d16, cur + x));
+        const auto v = hn::ShiftRight<5>(hn::Add(hn::Add(hn::Mul(o, wo), hn::Mul(c, wn)), r));
+        hn::StoreU(hn::DemoteTo(d16, hn::Min(hn::Max(v, lo), hi)), d16, cur + x);
+    }
+    for (; x < width; ++x) {
+        const int v = (old_row[x] * old_weight + cur[x] * new_weight + 16) >> 5;
+        cur[x] = static_cast<int16_t>(v < gmin ? gmin : v > gmax ? gmax : v);
+    }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace filmgrain::av1::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace filmgrain::av1::simd {
+
+HWY_EXPORT(BlendLumaRowU8);
+HWY_EXPORT(BlendLumaRowU16);
+HWY_EXPORT(BlendChromaRowU8);
+HWY_EXPORT(BlendChromaRowU16);
+HWY_EXPORT(CrossFadeRow);
+
+void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+                       int scaling_shift, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+                        int scaling_shift, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
+                         int width, int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling,
+                         int scaling_shift, int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowU8)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
+                                           scaling_shift, bit_depth, min_value, max_value);
+}
+void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                          const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                          const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
+                                            scaling_shift, bit_depth, min_value, max_value);
+}
+void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
+                    int gmax) {
+    HWY_DYNAMIC_DISPATCH(CrossFadeRow)(old_row, cur, width, old_weight, new_weight, gmin, gmax);
+}
+
+}  // namespace filmgrain::av1::simd
+#endif  // HWY_ONCE

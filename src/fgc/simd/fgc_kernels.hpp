@@ -1,0 +1,38 @@
+// Optimized twins of the FGC per-stripe stages (Highway, runtime dispatch over the targets
+// the CPU supports). Each is bit-equal to the scalar stages named beside it; the
+// equivalence test (tests/unit/simd_equivalence_test.cpp) checks that on random input for
+// every target. The optimized stripe holds grain as int16, which is exact: a grain value
+// is at most (255 << (bd - 8)) * 127 >> (log2_scale_factor + 6) <= 32385 in magnitude
+// (log2_scale_factor >= 2 whenever grain is synthesized).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+namespace filmgrain::fgc::simd {
+
+// One block of the stripe: `rows` template rows starting at `tmpl` (row pitch 64), scaled
+// by `scale` (sign included) and shifted right, written to `cols` columns at `dst`.
+// Twin of the inner copy loop of the reference stripe in fgc_synthesis.cpp.
+struct BlockCopy {
+    const int8_t* tmpl;
+    int16_t* dst;
+    int32_t scale;
+    int cols;
+};
+void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride);
+
+// Twin of deblock_stripe_vertical_edges followed by blend_row_additive, for one row:
+// `grain` is the undeblocked row and is only read (it needs one readable value past
+// `width`, as the reference stripe's padding provides). For u8 the grain must satisfy
+// |g| <= 8191 (8-bit grain is at most 126).
+void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size);
+void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
+                           int bit_depth);
+
+// Sums of `rows` x `block` sample blocks for the `width / block` whole blocks that start
+// at x = 0, block, 2*block, ... (block 8, 16 or 32; rows 1..32): the integer sums the local
+// adaptation (block_average_inside / block_average_replicated) divides or shifts.
+void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
+void block_sums_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
+
+}  // namespace filmgrain::fgc::simd

@@ -1,0 +1,181 @@
+// Highway implementations of fgc_kernels.hpp, compiled once per target (foreach_target).
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "fgc/simd/fgc_kernels_hwy.cpp"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+
+#include <algorithm>
+
+#include "fgc/simd/fgc_kernels.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace filmgrain::fgc::simd {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void ScaleTemplateBlocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
+    const hn::CappedTag<int32_t, 32> d32;
+    const hn::Rebind<int8_t, decltype(d32)> d8;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    for (int b = 0; b < count; b++) {
+        const BlockCopy& bc = blocks[b];
+        const auto scale = hn::Set(d32, bc.scale);
+        const int vec_cols = bc.cols - bc.cols % n;
+        for (int l = 0; l < rows; l++) {
+            const int8_t* t = bc.tmpl + 64 * l;
+            int16_t* g = bc.dst + dst_stride * l;
+            int k = 0;
+            for (; k < vec_cols; k += n) {
+                const auto v = hn::ShiftRightSame(hn::Mul(hn::PromoteTo(d32, hn::LoadU(d8, t + k)), scale), shift);
+                hn::StoreU(hn::DemoteTo(d16, v), d16, g + k);
+            }
+            for (; k < bc.cols; k++) g[k] = int16_t((bc.scale * t[k]) >> shift);
+        }
+    }
+}
+
+// The [1 2 1] / 4 value at every position, selected where the position is the last sample
+// before a vertical block edge or the first after it (edges at multiples of block_size in
+// (0, width)). Both use the unfiltered neighbours, as the reference does.
+template <class D, class V>
+HWY_INLINE auto DeblockedGrain(D d, const int16_t* grain, int x, int block_size, V& out_unfiltered) {
+    using T = hn::TFromD<D>;
+    const auto a = hn::LoadU(d, grain + x - 1);
+    const auto b = hn::LoadU(d, grain + x);
+    const auto c = hn::LoadU(d, grain + x + 1);
+    out_unfiltered = b;
+    const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
+    const auto phase = hn::And(hn::Iota(d, T(x % block_size)), hn::Set(d, T(block_size - 1)));
+    const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d)), hn::Eq(phase, hn::Set(d, T(block_size - 1))));
+    return hn::IfThenElse(edge, f, b);
+}
+
+inline int32_t deblocked_scalar(const int16_t* g, int x, int width, int bs) {
+    const bool right_of_edge = x % bs == 0 && x > 0;
+    const bool left_of_edge = x % bs == bs - 1 && x + 1 < width;
+    if (right_of_edge || left_of_edge) return (g[x - 1] + (g[x] << 1) + g[x + 1]) >> 2;
+    return g[x];
+}
+
+void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size) {
+    const hn::ScalableTag<int16_t> d16;
+    const hn::Rebind<uint8_t, decltype(d16)> d8;
+    const int n = int(hn::Lanes(d16));
+    // Lane x = 0 has no left neighbour and is never filtered; vector lanes stop before the
+    // last column so that no left-of-edge lane sees an edge at `width`.
+    int x = 1;
+    dst[0] = uint8_t(std::clamp<int32_t>(src[0] + deblocked_scalar(grain, 0, width, block_size), 0, 255));
+    for (; x + n <= width - 1; x += n) {
+        hn::Vec<decltype(d16)> unused;
+        const auto g = DeblockedGrain(d16, grain, x, block_size, unused);
+        const auto s = hn::BitCast(d16, hn::PromoteTo(hn::Rebind<uint16_t, decltype(d16)>(), hn::LoadU(d8, src + x)));
+        hn::StoreU(hn::DemoteTo(d8, hn::Add(s, g)), d8, dst + x);
+    }
+    for (; x < width; x++)
+        dst[x] = uint8_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size), 0, 255));
+}
+
+void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
+                        int bit_depth) {
+    const hn::ScalableTag<int32_t> d32;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const hn::Rebind<uint16_t, decltype(d32)> du16;
+    const int n = int(hn::Lanes(d32));
+    const int shift = bit_depth - 8;
+    const int32_t max_value = (1 << bit_depth) - 1;
+    const auto vmax = hn::Set(d32, max_value);
+    const auto bs_mask = hn::Set(d32, block_size - 1);
+    auto blend1 = [&](int x) {
+        dst[x] = uint16_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size) * (1 << shift), 0,
+                                              max_value));
+    };
+    int x = 1;
+    blend1(0);
+    for (; x + n <= width - 1; x += n) {
+        const auto a = hn::PromoteTo(d32, hn::LoadU(d16, grain + x - 1));
+        const auto b = hn::PromoteTo(d32, hn::LoadU(d16, grain + x));
+        const auto c = hn::PromoteTo(d32, hn::LoadU(d16, grain + x + 1));
+        const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
+        const auto phase = hn::And(hn::Iota(d32, x % block_size), bs_mask);
+        const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask));
+        const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
+        const auto s = hn::PromoteTo(d32, hn::LoadU(du16, src + x));
+        const auto v = hn::Min(hn::Max(hn::Add(s, g), hn::Zero(d32)), vmax);
+        hn::StoreU(hn::DemoteTo(du16, v), du16, dst + x);
+    }
+    for (; x < width; x++) blend1(x);
+}
+
+void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
+    const hn::ScalableTag<uint8_t> d8;
+    const hn::Repartition<uint64_t, decltype(d8)> d64;
+    const int n = int(hn::Lanes(d8));
+    const int blocks = width / block;
+    const int limit = blocks * block;
+    std::fill(sums, sums + blocks, 0u);
+    HWY_ALIGN uint64_t lanes[hn::MaxLanes(d64)];
+    int x = 0;
+    // SumsOf8 needs whole groups of 8 bytes per vector (not so on the one-lane SCALAR target).
+    for (; n >= 8 && x + n <= limit; x += n) {
+        auto acc = hn::Zero(d64);
+        for (int y = 0; y < rows; y++) acc = hn::Add(acc, hn::SumsOf8(hn::LoadU(d8, src + stride * y + x)));
+        hn::Store(acc, d64, lanes);
+        for (int i = 0; i < n / 8; i++) sums[(x + 8 * i) / block] += uint32_t(lanes[i]);
+    }
+    for (; x < limit; x++)
+        for (int y = 0; y < rows; y++) sums[x / block] += src[stride * y + x];
+}
+
+void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
+    const hn::ScalableTag<uint32_t> d32;
+    const hn::Rebind<uint16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    const int blocks = width / block;
+    const int limit = blocks * block;
+    std::fill(sums, sums + blocks, 0u);
+    HWY_ALIGN uint32_t lanes[hn::MaxLanes(d32)];
+    const std::ptrdiff_t pitch = stride / std::ptrdiff_t(sizeof(uint16_t));
+    int x = 0;
+    for (; x + n <= limit; x += n) {
+        auto acc = hn::Zero(d32);
+        for (int y = 0; y < rows; y++) acc = hn::Add(acc, hn::PromoteTo(d32, hn::LoadU(d16, src + pitch * y + x)));
+        hn::Store(acc, d32, lanes);
+        for (int i = 0; i < n; i++) sums[(x + i) / block] += lanes[i];
+    }
+    for (; x < limit; x++)
+        for (int y = 0; y < rows; y++) sums[x / block] += src[pitch * y + x];
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace filmgrain::fgc::simd
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace filmgrain::fgc::simd {
+
+HWY_EXPORT(ScaleTemplateBlocks);
+HWY_EXPORT(DeblockBlendRowU8);
+HWY_EXPORT(DeblockBlendRowU16);
+HWY_EXPORT(BlockSumsU8);
+HWY_EXPORT(BlockSumsU16);
+
+void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
+    HWY_DYNAMIC_DISPATCH(ScaleTemplateBlocks)(blocks, count, rows, shift, dst_stride);
+}
+void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8)(src, dst, grain, width, block_size);
+}
+void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
+                           int bit_depth) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16)(src, dst, grain, width, block_size, bit_depth);
+}
+void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
+    HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);
+}
+void block_sums_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
+    HWY_DYNAMIC_DISPATCH(BlockSumsU16)(src, stride, rows, width, block, sums);
+}
+
+}  // namespace filmgrain::fgc::simd
+#endif  // HWY_ONCE

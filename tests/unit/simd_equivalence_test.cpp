@@ -1,0 +1,426 @@
+// Checkasm-style equivalence of the optimized kernels with their scalar references, for
+// every vector target this CPU runs (each forced in turn through simd::force_target):
+// random parameters, sizes, strides (negative too) and bit depths, kernel by kernel and
+// for whole frames of both models. Any difference is reported with its position.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "av1/av1_synthesis.hpp"
+#include "av1/block_synthesis.hpp"
+#include "av1/grain_blending.hpp"
+#include "av1/noise_stripe_rows.hpp"
+#include "av1/simd/av1_kernels.hpp"
+#include "core/simd_targets.hpp"
+#include "fgc/blending.hpp"
+#include "fgc/deblocking.hpp"
+#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/local_adaptation.hpp"
+#include "fgc/simd/fgc_kernels.hpp"
+#include "filmgrain/error.hpp"
+
+using namespace filmgrain;
+
+namespace {
+
+class SimdEquivalence : public ::testing::TestWithParam<simd::Target> {
+protected:
+    void SetUp() override {
+        ASSERT_TRUE(simd::force_target(GetParam().bits));
+        ASSERT_EQ(simd::dispatched_target(), GetParam().name) << "dispatch did not follow the forced target";
+    }
+    void TearDown() override { simd::force_target(0); }
+    std::mt19937 rng{20261122u ^ uint32_t(GetParam().bits)};
+    int uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+};
+
+// A frame with its own row padding, optionally stored bottom-up (negative stride).
+struct StridedFrame {
+    std::vector<uint8_t> storage;
+    FrameView view;
+    StridedFrame(int w, int h, ChromaFormat cf, int bd, int pad, bool bottom_up, std::mt19937& rng) {
+        view.format = cf;
+        view.bit_depth = bd;
+        view.width = w;
+        view.height = h;
+        const int bps = bd > 8 ? 2 : 1;
+        std::size_t offsets[3] = {0, 0, 0}, total = 0;
+        std::ptrdiff_t strides[3] = {0, 0, 0};
+        for (int p = 0; p < num_planes(cf); p++) {
+            strides[p] = std::ptrdiff_t(plane_width(cf, p, w)) * bps + pad * bps;
+            offsets[p] = total;
+            total += std::size_t(strides[p]) * plane_height(cf, p, h);
+        }
+        storage.resize(total + 64);
+        std::uniform_int_distribution<int> sample(0, (1 << bd) - 1);
+        for (std::size_t i = 0; i + 1 < storage.size(); i += 2) {
+            const int v = sample(rng);
+            if (bps == 2) {
+                std::memcpy(&storage[i], &v, 2);
+            } else {
+                storage[i] = uint8_t(v);
+                storage[i + 1] = uint8_t(sample(rng));
+            }
+        }
+        for (int p = 0; p < num_planes(cf); p++) {
+            PlaneView& pv = view.planes[p];
+            pv.width = plane_width(cf, p, w);
+            pv.height = plane_height(cf, p, h);
+            pv.stride = bottom_up ? -strides[p] : strides[p];
+            pv.data = storage.data() + offsets[p] + (bottom_up ? std::size_t(strides[p]) * (pv.height - 1) : 0);
+        }
+    }
+    StridedFrame(const StridedFrame& o) : storage(o.storage), view(o.view) {
+        for (int p = 0; p < 3; p++)
+            if (view.planes[p].data) view.planes[p].data = storage.data() + (o.view.planes[p].data - o.storage.data());
+    }
+    // First differing sample of the visible area, or "" when equal.
+    std::string diff(const StridedFrame& o) const {
+        const int bps = view.bit_depth > 8 ? 2 : 1;
+        for (int p = 0; p < view.plane_count(); p++)
+            for (int y = 0; y < view.planes[p].height; y++)
+                if (std::memcmp(view.planes[p].row<uint8_t>(y), o.view.planes[p].row<uint8_t>(y),
+                                std::size_t(view.planes[p].width) * bps) != 0)
+                    return "plane " + std::to_string(p) + " row " + std::to_string(y);
+        return "";
+    }
+};
+
+TEST_P(SimdEquivalence, FgcScaleTemplateBlocks) {
+    for (int iter = 0; iter < 300; iter++) {
+        const int bs = 8 << uniform(0, 2), bd = uniform(8, 16);
+        std::vector<int8_t> tmpl(64 * 64);
+        for (auto& v : tmpl) v = int8_t(uniform(-127, 127));
+        const int shift = uniform(2, 7) + 6;
+        const int count = uniform(1, 6);
+        const int stride = count * bs + 5;
+        std::vector<int16_t> got(std::size_t(stride) * bs, 0), want(got.size(), 0);
+        std::vector<fgc::simd::BlockCopy> copies;
+        for (int b = 0; b < count; b++) {
+            const int ox = uniform(0, 64 - bs), oy = uniform(0, 64 - bs);
+            const int32_t scale = uniform(-(255 << (bd - 8)), 255 << (bd - 8));
+            const int cols = uniform(0, 3) ? bs : uniform(1, bs);
+            copies.push_back({tmpl.data() + oy * 64 + ox, got.data() + b * bs, scale, cols});
+            // the reference stripe's inner loop
+            for (int l = 0; l < bs; l++)
+                for (int k = 0; k < cols; k++)
+                    want[std::size_t(l) * stride + b * bs + k] = int16_t((scale * tmpl[(oy + l) * 64 + ox + k]) >> shift);
+        }
+        fgc::simd::scale_template_blocks(copies.data(), count, bs, shift, stride);
+        ASSERT_EQ(got, want) << "iteration " << iter << " bs " << bs << " bd " << bd;
+    }
+}
+
+TEST_P(SimdEquivalence, FgcDeblockAndBlend) {
+    for (int iter = 0; iter < 400; iter++) {
+        const int bs = 8 << uniform(0, 2), width = uniform(1, 300);
+        const int bd = uniform(0, 2) ? 8 : uniform(9, 16);
+        const int gmax = bd == 8 ? 126 : (32385 >> (16 - bd));
+        std::vector<int16_t> g16(std::size_t(width) + 2);
+        for (auto& v : g16) v = int16_t(uniform(-gmax, gmax));
+        std::vector<int32_t> g32(g16.begin(), g16.end());
+        fgc::deblock_stripe_vertical_edges(g32.data(), width + 2, 1, width, bs);
+        if (bd == 8) {
+            std::vector<uint8_t> src(static_cast<std::size_t>(width)), want(src.size()), got(src.size());
+            for (auto& v : src) v = uint8_t(uniform(0, 255));
+            fgc::blend_row_additive<uint8_t>(src.data(), want.data(), g32.data(), width, 8);
+            fgc::simd::deblock_blend_row_u8(src.data(), got.data(), g16.data(), width, bs);
+            ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs;
+        } else {
+            std::vector<uint16_t> src(static_cast<std::size_t>(width)), want(src.size()), got(src.size());
+            for (auto& v : src) v = uint16_t(uniform(0, (1 << bd) - 1));
+            fgc::blend_row_additive<uint16_t>(src.data(), want.data(), g32.data(), width, bd);
+            fgc::simd::deblock_blend_row_u16(src.data(), got.data(), g16.data(), width, bs, bd);
+            ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs << " bd " << bd;
+        }
+    }
+}
+
+TEST_P(SimdEquivalence, FgcBlockSums) {
+    for (int iter = 0; iter < 200; iter++) {
+        const int bs = 8 << uniform(0, 2), bd = uniform(9, 16);  // 16-bit planes; 8-bit below
+        const int w = uniform(1, 200), rows = uniform(1, bs);
+        StridedFrame f(w, rows, ChromaFormat::k400, bd, uniform(0, 9), uniform(0, 1), rng);
+        const PlaneView& p = f.view.planes[0];
+        std::vector<uint32_t> sums(std::size_t(w / bs) + 1, 0xdeadbeef);
+        fgc::simd::block_sums_u16(p.row<const uint16_t>(0), p.stride, rows, w, bs, sums.data());
+        for (int b = 0; b < w / bs; b++) {
+            // The average the reference computes must follow from the sum.
+            const uint32_t avg = std::min<uint32_t>((sums[b] / uint32_t(bs * rows)) >> (bd - 8), 255);
+            ASSERT_EQ(int(avg), fgc::block_average_inside<uint16_t>(p, b * bs, 0, bs, bd)) << "iteration " << iter;
+        }
+        ASSERT_EQ(sums[std::size_t(w / bs)], 0xdeadbeefu) << "wrote past the whole blocks";
+    }
+}
+
+// block_average_inside<uint16_t> above is only right for 16-bit planes; 8-bit planes are
+// checked with their own reference.
+TEST_P(SimdEquivalence, FgcBlockSums8Bit) {
+    for (int iter = 0; iter < 200; iter++) {
+        const int bs = 8 << uniform(0, 2), w = uniform(1, 300), rows = uniform(1, bs);
+        StridedFrame f(w, bs, ChromaFormat::k400, 8, uniform(0, 9), uniform(0, 1), rng);
+        const PlaneView& p = f.view.planes[0];
+        std::vector<uint32_t> sums(std::size_t(w / bs));
+        fgc::simd::block_sums_u8(p.row<const uint8_t>(0), p.stride, rows, w, bs, sums.data());
+        PlaneView top = p;
+        top.height = rows;
+        for (int b = 0; b < w / bs; b++) {
+            const uint32_t avg = std::min<uint32_t>(sums[b] / uint32_t(bs * rows), 255);
+            ASSERT_EQ(int(avg), fgc::block_average_inside<uint8_t>(top, b * bs, 0, bs, 8)) << "iteration " << iter;
+            if (rows == bs) {
+                const int log2_area = bs == 8 ? 6 : bs == 16 ? 8 : 10;
+                ASSERT_EQ(int(std::min<uint32_t>(sums[b] >> log2_area, 255)),
+                          fgc::block_average_replicated<uint8_t>(p, b * bs, 0, bs, 8));
+            }
+        }
+    }
+}
+
+av1::ScalingLookup random_scaling(std::mt19937& rng, int bd) {
+    std::uniform_int_distribution<int> count_d(0, 14), scale_d(0, 255);
+    int values[14], scalings[14];
+    const int count = count_d(rng);
+    int v = 0;
+    int n = 0;
+    for (; n < count && v < 256; n++) {
+        v += std::uniform_int_distribution<int>(n == 0 ? 0 : 1, 40)(rng);
+        if (v > 255) break;
+        values[n] = v;
+        scalings[n] = scale_d(rng);
+    }
+    return av1::ScalingLookup(values, scalings, n, bd);
+}
+
+std::vector<int32_t> widen(const av1::ScalingLookup& s, int bd) {
+    std::vector<int32_t> out(std::size_t(1) << bd);
+    for (int i = 0; i < (1 << bd); i++) out[std::size_t(i)] = s(i);
+    return out;
+}
+
+TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
+    for (int iter = 0; iter < 300; iter++) {
+        const int bd = std::array<int, 3>{8, 10, 12}[std::size_t(uniform(0, 2))];
+        const int width = uniform(1, 150), subx = uniform(0, 1);
+        const int luma_width = subx ? width * 2 - uniform(0, 1) : width;
+        const av1::ScalingLookup scaling = random_scaling(rng, bd);
+        const std::vector<int32_t> table = widen(scaling, bd);
+        const int shift = uniform(8, 11);
+        const av1::ClipLimits clip = av1::clip_limits(uniform(0, 1), bd, uniform(0, 2));
+        const int gmax = (128 << (bd - 8)) - 1;
+        std::vector<int16_t> noise(static_cast<std::size_t>(width));
+        for (auto& n : noise) n = int16_t(uniform(-gmax - 1, gmax));
+        av1::ChromaScalingIndex index{uniform(0, 3) == 0, uniform(-128, 127), uniform(-128, 127), uniform(-256, 255)};
+        auto run = [&](auto zero) {
+            using Pixel = decltype(zero);
+            std::vector<Pixel> src(static_cast<std::size_t>(width)), luma(static_cast<std::size_t>(luma_width)), want(src.size()), got(src.size());
+            for (auto& s : src) s = Pixel(uniform(0, (1 << bd) - 1));
+            for (auto& s : luma) s = Pixel(uniform(0, (1 << bd) - 1));
+            av1::blend_luma_row<Pixel>(src.data(), want.data(), noise.data(), width, scaling, shift, clip.min_value,
+                                       clip.max_luma);
+            if constexpr (sizeof(Pixel) == 1)
+                av1::simd::blend_luma_row_u8(src.data(), got.data(), noise.data(), width, table.data(), shift,
+                                             clip.min_value, clip.max_luma);
+            else
+                av1::simd::blend_luma_row_u16(src.data(), got.data(), noise.data(), width, table.data(), shift,
+                                              clip.min_value, clip.max_luma);
+            ASSERT_EQ(got, want) << "luma, iteration " << iter << " bd " << bd << " width " << width;
+            av1::blend_chroma_row<Pixel>(src.data(), want.data(), luma.data(), luma_width, noise.data(), width, subx,
+                                         index, scaling, shift, bd, clip.min_value, clip.max_chroma);
+            if constexpr (sizeof(Pixel) == 1)
+                av1::simd::blend_chroma_row_u8(src.data(), got.data(), luma.data(), luma_width, noise.data(), width,
+                                               subx, index, table.data(), shift, bd, clip.min_value, clip.max_chroma);
+            else
+                av1::simd::blend_chroma_row_u16(src.data(), got.data(), luma.data(), luma_width, noise.data(), width,
+                                                subx, index, table.data(), shift, bd, clip.min_value,
+                                                clip.max_chroma);
+            ASSERT_EQ(got, want) << "chroma, iteration " << iter << " bd " << bd << " width " << width << " subx "
+                                 << subx << " luma width " << luma_width;
+        };
+        if (bd == 8)
+            run(uint8_t{});
+        else
+            run(uint16_t{});
+    }
+}
+
+Av1FilmGrainParams random_av1_params(std::mt19937& rng, int bd, bool mono) {
+    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    Av1FilmGrainParams p;
+    p.apply_grain = 1;
+    p.grain_seed = u(0, 65535);
+    auto points = [&](int max_n, auto& values, auto& scalings) {
+        const int n = u(0, max_n);
+        int v = -1, k = 0;
+        for (; k < n; k++) {
+            v += u(1, 30);
+            if (v > 255) break;
+            values[std::size_t(k)] = v;
+            scalings[std::size_t(k)] = u(0, 255);
+        }
+        return k;
+    };
+    p.num_y_points = points(14, p.point_y_value, p.point_y_scaling);
+    if (!mono) {
+        p.chroma_scaling_from_luma = u(0, 3) == 0;
+        if (!p.chroma_scaling_from_luma) {
+            p.num_cb_points = points(10, p.point_cb_value, p.point_cb_scaling);
+            p.num_cr_points = points(10, p.point_cr_value, p.point_cr_scaling);
+        }
+    }
+    p.grain_scaling_minus_8 = u(0, 3);
+    p.ar_coeff_lag = u(0, 3);
+    for (auto& c : p.ar_coeffs_y_plus_128) c = u(100, 156);
+    for (auto& c : p.ar_coeffs_cb_plus_128) c = u(100, 156);
+    for (auto& c : p.ar_coeffs_cr_plus_128) c = u(100, 156);
+    p.ar_coeff_shift_minus_6 = u(0, 3);
+    p.grain_scale_shift = u(0, 3);
+    p.cb_mult = u(0, 255), p.cb_luma_mult = u(0, 255), p.cb_offset = u(0, 511);
+    p.cr_mult = u(0, 255), p.cr_luma_mult = u(0, 255), p.cr_offset = u(0, 511);
+    p.overlap_flag = u(0, 1);
+    p.clip_to_restricted_range = u(0, 1);
+    (void)bd;
+    return p;
+}
+
+TEST_P(SimdEquivalence, Av1NoiseStripeRows) {
+    for (int iter = 0; iter < 60; iter++) {
+        const int bd = std::array<int, 3>{8, 10, 12}[std::size_t(uniform(0, 2))];
+        const int sx = uniform(0, 1), sy = uniform(0, 1);
+        Av1FilmGrainParams p = random_av1_params(rng, bd, false);
+        p.num_y_points = std::max(p.num_y_points, 0);
+        const av1::GrainTemplate luma = av1::generate_luma_template(p, bd);
+        const int luma_width = uniform(1, 200), stripe = uniform(0, 40);
+        const bool overlap = uniform(0, 1);
+        const int blocks = av1::num_blocks_across(luma_width);
+        const av1::NoiseStripe want = av1::build_noise_stripe(
+            sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma,
+            av1::stripe_block_offsets(p.grain_seed, stripe, blocks), sx, sy, overlap, bd);
+        ASSERT_EQ(want.width, av1::noise_stripe_width(luma_width, sx));
+        const int row0 = uniform(0, want.height), row1 = uniform(row0, want.height);
+        std::vector<int16_t> got(std::size_t(want.width) * std::max(1, row1 - row0));
+        av1::build_noise_stripe_rows(sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma,
+                                     p.grain_seed, stripe, luma_width, sx, sy, overlap, bd, row0, row1, got.data(),
+                                     want.width);
+        for (int y = row0; y < row1; y++)
+            for (int x = 0; x < want.width; x++)
+                ASSERT_EQ(got[std::size_t(y - row0) * want.width + x], want.at(y, x)) << "row " << y << " x " << x;
+    }
+    // cross_fade_row against the overlap formula of build_stripe_noise
+    for (int iter = 0; iter < 100; iter++) {
+        const int bd = uniform(8, 12), width = uniform(1, 100);
+        const int gmin = -(128 << (bd - 8)), gmax = (128 << (bd - 8)) - 1;
+        std::vector<int16_t> old_row(static_cast<std::size_t>(width)), cur(old_row.size());
+        for (auto& v : old_row) v = int16_t(uniform(gmin, gmax));
+        for (auto& v : cur) v = int16_t(uniform(gmin, gmax));
+        const int wo = std::array<int, 3>{27, 17, 23}[std::size_t(uniform(0, 2))], wn = uniform(17, 27);
+        std::vector<int16_t> want = cur;
+        for (int x = 0; x < width; x++)
+            want[std::size_t(x)] = int16_t(std::clamp((old_row[std::size_t(x)] * wo + cur[std::size_t(x)] * wn + 16) >> 5, gmin, gmax));
+        av1::simd::cross_fade_row(old_row.data(), cur.data(), width, wo, wn, gmin, gmax);
+        ASSERT_EQ(cur, want);
+    }
+}
+
+TEST_P(SimdEquivalence, Av1WholeFrames) {
+    const ChromaFormat formats[] = {ChromaFormat::k420, ChromaFormat::k422, ChromaFormat::k444, ChromaFormat::k400};
+    av1::Av1Synthesizer optimized(3, av1::Kernels::kOptimized);
+    for (int iter = 0; iter < 24; iter++) {
+        const int bd = std::array<int, 3>{8, 10, 12}[std::size_t(uniform(0, 2))];
+        const ChromaFormat cf = formats[uniform(0, 3)];
+        const int w = uniform(1, 180), h = uniform(1, 150);
+        Av1FilmGrainParams p;
+        for (;;) {  // draw until the set is valid for the format (e.g. 4:2:0 chroma point rules)
+            p = random_av1_params(rng, bd, cf == ChromaFormat::k400);
+            try {
+                av1::Av1SynthesisContext check(p, cf, bd, 16, 16, 1);
+                break;
+            } catch (const Error&) {
+            }
+        }
+        const int mc = uniform(0, 2);
+        StridedFrame src(w, h, cf, bd, uniform(0, 17), uniform(0, 1), rng);
+        StridedFrame want = src, got = src, in_place = src;
+        av1::apply_film_grain(p, src.view, want.view, mc);  // scalar reference, one thread
+        optimized.apply(p, src.view, got.view, mc);
+        ASSERT_EQ(got.diff(want), "") << "iteration " << iter << " " << w << "x" << h << " bd " << bd;
+        optimized.apply(p, in_place.view, in_place.view, mc);
+        ASSERT_EQ(in_place.diff(want), "") << "in place, iteration " << iter;
+    }
+}
+
+FgcParams random_fgc_params(std::mt19937& rng, int bd) {
+    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    FgcParams p;
+    p.log2_scale_factor = u(2, 7);
+    for (int c = 0; c < 3; c++) {
+        auto& m = p.comp[std::size_t(c)];
+        m.comp_model_present_flag = u(0, 4) != 0;
+        if (!m.comp_model_present_flag) continue;
+        m.num_model_values_minus1 = 2;
+        const int n = u(1, 3);
+        int lo = u(0, 40);
+        m.intervals.clear();
+        for (int i = 0; i < n && lo < 255; i++) {
+            const int hi = std::min(255, lo + u(10, 120));
+            m.intervals.push_back({lo, hi, {u(0, 255) << (bd - 8) >> u(0, bd - 8), u(2, 14), u(2, 14)}});
+            lo = hi + 1 + u(0, 20);
+        }
+    }
+    return p;
+}
+
+TEST_P(SimdEquivalence, FgcWholeFrames) {
+    const ChromaFormat formats[] = {ChromaFormat::k420, ChromaFormat::k422, ChromaFormat::k444, ChromaFormat::k400};
+    int synthesized = 0;
+    for (int iter = 0; iter < 30; iter++) {
+        const int bd = std::array<int, 4>{8, 8, 10, 12}[std::size_t(uniform(0, 3))];
+        const ChromaFormat cf = formats[uniform(0, 3)];
+        const int w = uniform(1, 200), h = uniform(1, 140);
+        FgcOptions o;
+        o.flavour = uniform(0, 1) ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
+        o.block_size = o.flavour == FgcFlavour::kVtm ? 8 << uniform(0, 2) : 0;
+        o.threads = uniform(1, 3);
+        FgcOptions ref = o;
+        ref.reference_kernels = true;
+        ref.threads = 1;
+        FgcSynthesizer fast(o), slow(ref);
+        const FgcParams params = random_fgc_params(rng, bd);
+        StridedFrame src(w, h, cf, bd, uniform(0, 17), uniform(0, 1), rng);
+        StridedFrame want = src, got = src, in_place = src;
+        const FgcPictureIds ids{uniform(0, 300), uniform(0, 3)};
+        slow.receive_sei(params);
+        fast.receive_sei(params);
+        try {
+            slow.apply(src.view, want.view, ids);
+        } catch (const Error&) {
+            EXPECT_THROW(fast.apply(src.view, got.view, ids), Error);  // same validation either way
+            continue;
+        }
+        fast.apply(src.view, got.view, ids);
+        ASSERT_EQ(got.diff(want), "") << "iteration " << iter << " " << w << "x" << h << " bd " << bd << " flavour "
+                                      << int(o.flavour) << " block " << o.block_size;
+        fast.apply(in_place.view, in_place.view, ids);
+        ASSERT_EQ(in_place.diff(want), "") << "in place, iteration " << iter;
+        synthesized++;
+    }
+    EXPECT_GE(synthesized, 15) << "too few random parameter sets were valid to prove anything";
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, SimdEquivalence, ::testing::ValuesIn(simd::available_targets()),
+                         [](const ::testing::TestParamInfo<simd::Target>& i) { return i.param.name; });
+
+TEST(SimdTargets, SomeTargetIsAvailableAndForcingWorks) {
+    const auto targets = simd::available_targets();
+    ASSERT_FALSE(targets.empty());
+    EXPECT_FALSE(simd::force_target(targets.front().bits | targets.back().bits | (int64_t(1) << 40)))
+        << "anything but one available target must be refused";
+    EXPECT_FALSE(simd::force_target(std::string("no-such-target")));
+    EXPECT_TRUE(simd::force_target(targets.back().name));
+    EXPECT_EQ(simd::dispatched_target(), targets.back().name);
+    simd::force_target(0);
+    EXPECT_EQ(simd::dispatched_target(), targets.front().name);
+}
+
+}  // namespace
