@@ -14,11 +14,15 @@ int noise_stripe_width(int luma_width, int subsampling_x) {
     return num_blocks_across(luma_width) * block_w + (copy_w - block_w);
 }
 
-void build_noise_stripe_rows(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
-                             int subsampling_y, bool overlap, int bit_depth, int row0, int row1, int16_t* out,
-                             std::ptrdiff_t out_stride) {
+namespace {
+
+// kCopyW is a compile-time width (34 full resolution, 17 subsampled), so the row copies
+// become a few vector moves instead of a generic (rep movs) memcpy.
+template <int kCopyW>
+void build_rows(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
+                int subsampling_y, bool overlap, int bit_depth, int row0, int row1, int16_t* out,
+                std::ptrdiff_t out_stride) {
     const int block_w = kBlockSize >> subsampling_x;
-    const int copy_w = (kBlockSize + 2) >> subsampling_x;
     const int blocks = num_blocks_across(luma_width);
     const int gmin = -(128 << (bit_depth - 8)), gmax = (128 << (bit_depth - 8)) - 1;
     // Weights of the horizontal overlap columns: (left block, this block) per column.
@@ -36,15 +40,28 @@ void build_noise_stripe_rows(const GrainTemplate& tmpl, int grain_seed, int stri
             const int16_t* t = tmpl.samples.data() + static_cast<std::size_t>(ty + i) * tmpl.width + tx;
             if (b > 0 && overlap_cols) {
                 const int16_t old0 = row[0], old1 = row[1];
-                std::memcpy(row, t, sizeof(int16_t) * static_cast<std::size_t>(copy_w));
+                std::memcpy(row, t, sizeof(int16_t) * kCopyW);
                 row[0] = static_cast<int16_t>(std::clamp((old0 * w_old0 + t[0] * w_new0 + 16) >> 5, gmin, gmax));
                 if (overlap_cols == 2)
                     row[1] = static_cast<int16_t>(std::clamp((old1 * 17 + t[1] * 27 + 16) >> 5, gmin, gmax));
             } else {
-                std::memcpy(row, t, sizeof(int16_t) * static_cast<std::size_t>(copy_w));
+                std::memcpy(row, t, sizeof(int16_t) * kCopyW);
             }
         }
     }
+}
+
+}  // namespace
+
+void build_noise_stripe_rows(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
+                             int subsampling_y, bool overlap, int bit_depth, int row0, int row1, int16_t* out,
+                             std::ptrdiff_t out_stride) {
+    if (subsampling_x)
+        build_rows<(kBlockSize + 2) / 2>(tmpl, grain_seed, stripe, luma_width, 1, subsampling_y, overlap, bit_depth,
+                                         row0, row1, out, out_stride);
+    else
+        build_rows<kBlockSize + 2>(tmpl, grain_seed, stripe, luma_width, 0, subsampling_y, overlap, bit_depth, row0,
+                                   row1, out, out_stride);
 }
 
 }  // namespace filmgrain::av1

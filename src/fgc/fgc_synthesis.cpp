@@ -126,6 +126,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     const int stride = blocks_x * rb + 2;
     const int sub_rows = bs == 8 ? 2 : 1, sub_cols = bs == 8 ? 2 : 1;
     const int whole_blocks = w / bs;
+    const int log2_area = bs == 8 ? 6 : bs == 16 ? 8 : 10;
 
     if (scratch.stripe16.size() < std::size_t(stride) * rb) scratch.stripe16.resize(std::size_t(stride) * rb);
     if (scratch.sums.size() < std::size_t(blocks_x) * 2 * sub_rows)
@@ -149,7 +150,6 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     }
 
     int copies = 0;
-    const int log2_area = bs == 8 ? 6 : bs == 16 ? 8 : 10;
     for (int bx = 0; bx < blocks_x; bx++) {
         const BlockOffset off = block_offset_from_state(states[std::size_t(by) * blocks_x + bx], bs);
         const int sub_count = bs == 8 ? 4 : 1;
@@ -164,7 +164,9 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
                 if (x0 >= w || y0 >= h) continue;
                 if (whole_columns) {
                     const uint32_t sum = sums[(yo / bs) * blocks_per_row + x0 / bs];
-                    avg = int(std::min<uint32_t>((sum / uint32_t(bs * rows_inside)) >> (bit_depth - 8), 255));
+                    // a whole block divides by 2^log2_area: the same as a shift for unsigned sums
+                    const uint32_t mean = rows_inside == bs ? sum >> log2_area : sum / uint32_t(bs * rows_inside);
+                    avg = int(std::min<uint32_t>(mean >> (bit_depth - 8), 255));
                 } else {
                     avg = block_average_inside<Pixel>(src, x0, y0, bs, bit_depth);
                 }

@@ -13,13 +13,42 @@ namespace filmgrain::fgc::simd {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+// |scale| <= 258 keeps scale * template (|template| <= 127) inside int16, so the product
+// can be formed in 16-bit lanes (always so at 8 bits, where |scale| <= 255); larger scales
+// take 32-bit lanes.
 void ScaleTemplateBlocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
     const hn::CappedTag<int32_t, 32> d32;
     const hn::Rebind<int8_t, decltype(d32)> d8;
     const hn::Rebind<int16_t, decltype(d32)> d16;
+    const hn::CappedTag<int16_t, 8> w16;  // one 8-sample block row per vector
+    const hn::Rebind<int8_t, decltype(w16)> w8;
     const int n = int(hn::Lanes(d32));
     for (int b = 0; b < count; b++) {
         const BlockCopy& bc = blocks[b];
+        if (bc.scale >= -258 && bc.scale <= 258) {
+            const int n16 = int(hn::Lanes(w16));
+            const auto scale = hn::Set(w16, int16_t(bc.scale));
+            if (n16 == 8 && bc.cols == 8) {
+                const int8_t* t = bc.tmpl;
+                int16_t* g = bc.dst;
+                for (int l = 0; l < rows; l++, t += 64, g += dst_stride) {
+                    const auto prod = hn::Mul(hn::PromoteTo(w16, hn::LoadU(w8, t)), scale);
+                    hn::StoreU(hn::ShiftRightSame(prod, shift), w16, g);
+                }
+                continue;
+            }
+            if (n16 == 8 && bc.cols % 8 == 0) {
+                for (int l = 0; l < rows; l++) {
+                    const int8_t* t = bc.tmpl + 64 * l;
+                    int16_t* g = bc.dst + dst_stride * l;
+                    for (int k = 0; k < bc.cols; k += n16) {
+                        const auto prod = hn::Mul(hn::PromoteTo(w16, hn::LoadU(w8, t + k)), scale);
+                        hn::StoreU(hn::ShiftRightSame(prod, shift), w16, g + k);
+                    }
+                }
+                continue;
+            }
+        }
         const auto scale = hn::Set(d32, bc.scale);
         const int vec_cols = bc.cols - bc.cols % n;
         for (int l = 0; l < rows; l++) {
@@ -38,16 +67,14 @@ void ScaleTemplateBlocks(const BlockCopy* blocks, int count, int rows, int shift
 // The [1 2 1] / 4 value at every position, selected where the position is the last sample
 // before a vertical block edge or the first after it (edges at multiples of block_size in
 // (0, width)). Both use the unfiltered neighbours, as the reference does.
+// `phase` holds each lane's position modulo block_size (a power of two).
 template <class D, class V>
-HWY_INLINE auto DeblockedGrain(D d, const int16_t* grain, int x, int block_size, V& out_unfiltered) {
-    using T = hn::TFromD<D>;
+HWY_INLINE V DeblockedGrain(D d, const int16_t* grain, int x, V phase, V last) {
     const auto a = hn::LoadU(d, grain + x - 1);
     const auto b = hn::LoadU(d, grain + x);
     const auto c = hn::LoadU(d, grain + x + 1);
-    out_unfiltered = b;
     const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
-    const auto phase = hn::And(hn::Iota(d, T(x % block_size)), hn::Set(d, T(block_size - 1)));
-    const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d)), hn::Eq(phase, hn::Set(d, T(block_size - 1))));
+    const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d)), hn::Eq(phase, last));
     return hn::IfThenElse(edge, f, b);
 }
 
@@ -66,11 +93,14 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
     // last column so that no left-of-edge lane sees an edge at `width`.
     int x = 1;
     dst[0] = uint8_t(std::clamp<int32_t>(src[0] + deblocked_scalar(grain, 0, width, block_size), 0, 255));
+    const auto last = hn::Set(d16, int16_t(block_size - 1));
+    const auto step = hn::Set(d16, int16_t(n));
+    auto phase = hn::And(hn::Iota(d16, 1), last);
     for (; x + n <= width - 1; x += n) {
-        hn::Vec<decltype(d16)> unused;
-        const auto g = DeblockedGrain(d16, grain, x, block_size, unused);
+        const auto g = DeblockedGrain(d16, grain, x, phase, last);
         const auto s = hn::BitCast(d16, hn::PromoteTo(hn::Rebind<uint16_t, decltype(d16)>(), hn::LoadU(d8, src + x)));
         hn::StoreU(hn::DemoteTo(d8, hn::Add(s, g)), d8, dst + x);
+        phase = hn::And(hn::Add(phase, step), last);
     }
     for (; x < width; x++)
         dst[x] = uint8_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size), 0, 255));
@@ -92,12 +122,13 @@ void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain
     };
     int x = 1;
     blend1(0);
-    for (; x + n <= width - 1; x += n) {
+    const auto step = hn::Set(d32, n);
+    auto phase = hn::And(hn::Iota(d32, 1), bs_mask);
+    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), bs_mask)) {
         const auto a = hn::PromoteTo(d32, hn::LoadU(d16, grain + x - 1));
         const auto b = hn::PromoteTo(d32, hn::LoadU(d16, grain + x));
         const auto c = hn::PromoteTo(d32, hn::LoadU(d16, grain + x + 1));
         const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
-        const auto phase = hn::And(hn::Iota(d32, x % block_size), bs_mask);
         const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask));
         const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
         const auto s = hn::PromoteTo(d32, hn::LoadU(du16, src + x));
