@@ -17,7 +17,7 @@
 #include "metadata/fgc_sei.hpp"
 
 using namespace filmgrain;
-using namespace filmgrain::testing;
+using namespace filmgrain::test_support;
 namespace fs = std::filesystem;
 
 namespace {
