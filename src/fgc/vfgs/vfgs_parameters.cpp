@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "fgc/ar_template_generation.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::vfgs {
@@ -29,15 +30,15 @@ void check_range(const std::string& field, long long v, long long lo, long long 
 
 std::array<int, 6> complete_model_values(const std::array<int, 6>& signalled, int num_values, int model_id,
                                          int log2_scale_factor) {
+    // Model 1: the FGC auto-regressive defaults (p = 0, A = 1 << L with L as signalled,
+    // before --gain), shared with the tr flavour.
+    if (model_id == 1) return fgc::complete_ar_model_values(signalled, num_values, log2_scale_factor);
     std::array<int, 6> v = signalled;
-    const bool ff = (model_id == 0);
-    if (num_values < 2) v[1] = ff ? 8 : 0;     // horizontal high cut-off / left+top AR weight
-    if (num_values < 3) v[2] = ff ? v[1] : 0;  // vertical high cut-off / colour correlation
-    if (num_values < 4) v[3] = 0;              // horizontal low cut-off / diagonal AR weight
-    // Vertical low cut-off / aspect factor (1 << L means isotropic). VFGS
-    // uses the log2_scale_factor as signalled, before --gain.
-    if (num_values < 5) v[4] = model_id << log2_scale_factor;
-    if (num_values < 6) v[5] = 0;              // (unused) / second-order AR weight
+    if (num_values < 2) v[1] = 8;     // horizontal high cut-off
+    if (num_values < 3) v[2] = v[1];  // vertical high cut-off
+    if (num_values < 4) v[3] = 0;     // horizontal low cut-off
+    if (num_values < 5) v[4] = 0;     // vertical low cut-off (model_id << L for model 0)
+    if (num_values < 6) v[5] = 0;     // (unused)
     return v;
 }
 

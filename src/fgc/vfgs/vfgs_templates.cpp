@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "fgc/ar_template_generation.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_tables.hpp"
@@ -71,38 +72,14 @@ Template make_frequency_template_chroma420(int h_cutoff, int v_cutoff) {
 }
 
 Template make_ar_template_luma(const std::array<int, 6>& value, int log2_scale_factor) {
-    // Work buffer: 3 samples of filter support on the left/top/right, plus 6
-    // samples of warm-up so that the cropped part is away from the zero start.
-    constexpr int kW = 82, kH = 73, kMargin = 3, kCrop = 9;
-    const int L = log2_scale_factor;
-    const long long a = value[4];  // vertical aspect factor, 1 << L = isotropic
-    // Weights of the causal neighbours, in 1/2^L. 64-bit products: VFGS does
-    // not range-check value[4]; for in-range values this equals its int maths.
-    const int w_left = value[1];
-    const int w_top = static_cast<int>((value[1] * a) >> L);
-    const int w_diag = static_cast<int>((value[3] * a) >> L);
-    const int w_left2 = value[5];
-    const int w_top2 = static_cast<int>((value[5] * a * a) >> (2 * L));
-
-    std::vector<int> buf(static_cast<size_t>(kW) * kH, 0);
-    auto at = [&](int y, int x) { return buf[static_cast<size_t>(y) * kW + x]; };
+    // The shared AR filter (fgc/ar_template_generation) driven by VFGS's random source:
+    // (Gaussian_LUT[r & 2047] + 1) >> 1, r stepping once per sample from Seed_LUT[0].
     uint32_t r = kSeedLut[0];
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            int g = 0;
-            if (y >= kMargin && x >= kMargin && x < kW - kMargin) {
-                const int sum = w_left * at(y, x - 1) + w_left2 * at(y, x - 2) + w_top * at(y - 1, x) +
-                                w_diag * (at(y - 1, x - 1) + at(y - 1, x + 1)) + w_top2 * at(y - 2, x);
-                g = (sum + (1 << (L - 1))) >> L;
-            }
-            g += (kGaussianLut[r & 2047u] + 1) >> 1;  // half-amplitude noise
-            r = lfsr_next(r);
-            buf[static_cast<size_t>(y) * kW + x] = clip127(g);
-        }
-    Template t{};
-    for (int y = 0; y < kTemplateSize; ++y)
-        for (int x = 0; x < kTemplateSize; ++x) t[y][x] = static_cast<int8_t>(at(kCrop + y, kCrop + x));
-    return t;
+    return fgc::make_ar_template(fgc::ar_weights(value, log2_scale_factor), [&r] {
+        const int n = (kGaussianLut[r & 2047u] + 1) >> 1;
+        r = lfsr_next(r);
+        return n;
+    });
 }
 
 namespace {
