@@ -37,11 +37,18 @@ FgcFlavour parse_flavour(const std::string& s) {
     if (s == "rdd5") return FgcFlavour::kRdd5;
     if (s == "vtm" || s == "hm") return FgcFlavour::kVtm;
     if (s == "vfgs") return FgcFlavour::kVfgs;
-    throw Error(ErrorCode::kInvalidArgument, "--flavour '" + s + "' is not known (allowed rdd5, vtm, vfgs)");
+    if (s == "tr") return FgcFlavour::kTr;
+    throw Error(ErrorCode::kInvalidArgument, "--flavour '" + s + "' is not known (allowed rdd5, vtm, vfgs, tr)");
 }
 
 std::string flavour_name(FgcFlavour f) {
-    return f == FgcFlavour::kRdd5 ? "rdd5" : f == FgcFlavour::kVtm ? "vtm" : "vfgs";
+    switch (f) {
+        case FgcFlavour::kRdd5: return "rdd5";
+        case FgcFlavour::kVtm: return "vtm";
+        case FgcFlavour::kVfgs: return "vfgs";
+        case FgcFlavour::kTr: return "tr";
+    }
+    return "?";
 }
 
 }  // namespace filmgrain::cli

@@ -28,6 +28,7 @@ struct ApplyOptions {
     std::string on_invalid = "error";
     std::string persistence = "reference";
     int block_size = 0;
+    int single_line_blocks = 0;
     std::string coded_size;
     int threads = 0;
     bool quiet = false;
@@ -35,6 +36,7 @@ struct ApplyOptions {
     std::optional<uint32_t> seed;
     int gain = 100;
     std::string output_pix_fmt;
+    bool pattern_interpolation = false;
     // AV1
     int matrix_coefficients = -1;
     int clip_to_restricted_range = -1;
@@ -178,6 +180,11 @@ int run_vfgs(const ApplyOptions& o, std::unique_ptr<FgcSource> source) {
     vfgs::Options vo;
     vo.seed = o.seed;
     vo.gain_percent = o.gain;
+    vo.pattern_interpolation = o.pattern_interpolation;
+    vo.block_size = o.block_size;
+    if (o.single_line_blocks)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
     VideoInfo out_override;
     bool override_format = false;
     if (!o.output_pix_fmt.empty()) {
@@ -221,13 +228,15 @@ int run_apply(const ApplyOptions& o) {
         source = std::make_unique<SeiFileSource>(o.sei, codec);
     }
     if (flavour == FgcFlavour::kVfgs) return run_vfgs(o, std::move(source));
-    if (o.gain != 100 || o.seed || !o.output_pix_fmt.empty())
-        throw Error(ErrorCode::kInvalidArgument, "--seed, --gain and --output-pix-fmt belong to --flavour vfgs");
+    if (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "--seed, --gain, --output-pix-fmt and --pattern-interpolation belong to --flavour vfgs");
 
     FgcOptions fo;
     fo.flavour = flavour;
     fo.persistence = o.persistence == "semantic" ? FgcPersistence::kSemantic : FgcPersistence::kReference;
     fo.block_size = o.block_size;
+    fo.single_line_blocks = o.single_line_blocks;
     if (!o.coded_size.empty()) {
         RawVideoOptions cs;
         cs.size = o.coded_size;
@@ -263,7 +272,10 @@ void register_apply(CLI::App& app) {
                     "raw FGC SEI payload(s) (payloadType 19 body); one file for every picture, several for "
                     "pictures 0,1,..., or a printf pattern such as frame%d.fgc.bin (missing = no SEI)");
     sub->add_option("--sei-codec", o->sei_codec, "SEI syntax variant: avc, hevc or vvc")->capture_default_str();
-    sub->add_option("--flavour", o->flavour, "rdd5 (SMPTE RDD 5 / FFmpeg), vtm (HM/VTM reference) or vfgs")
+    sub->add_option("--flavour", o->flavour,
+                    "rdd5 (SMPTE RDD 5 / FFmpeg), vtm (HM/VTM reference), vfgs (VersatileFilmGrain) or tr (rdd5 "
+                    "plus what TR 23002-9 allows beyond the references: auto-regressive model, multiplicative "
+                    "blending, film grain bit depth)")
         ->capture_default_str();
     sub->add_option("--on-invalid", o->on_invalid,
                     "invalid parameter set: error (exit non-zero) or passthrough (picture unchanged, as the references)")
@@ -271,7 +283,11 @@ void register_apply(CLI::App& app) {
     sub->add_option("--persistence", o->persistence,
                     "pictures without an SEI: reference (HM: reuse the last SEI) or semantic (persistence_flag)")
         ->capture_default_str();
-    sub->add_option("--block-size", o->block_size, "force the adaptation block size 8, 16 or 32 (0: flavour default)");
+    sub->add_option("--block-size", o->block_size,
+                    "force the block size 8, 16 or 32 (0: flavour default; vfgs has 16 only)");
+    sub->add_option("--single-line-blocks", o->single_line_blocks,
+                    "vtm, tr: TR 23002-9 7.3.2.3 single-line blocks, intensity averaged over 8x1, 16x1 or 32x1 "
+                    "segments, one template per component and picture (0: square blocks)");
     sub->add_option("--coded-size", o->coded_size,
                     "vtm: the stream's coded picture size WxH (SPS), which picks HM's block size "
                     "(default: the picture size rounded up to a multiple of 16)");
@@ -281,6 +297,9 @@ void register_apply(CLI::App& app) {
     sub->add_option("--seed", o->seed, "vfgs: the reference's -r seed (absent: its default state 0xDEADBEEF)");
     sub->add_option("--gain", o->gain, "vfgs: the reference's --gain in percent")->capture_default_str();
     sub->add_option("--output-pix-fmt", o->output_pix_fmt, "vfgs: output format, e.g. yuv420p for 8-bit output of 10-bit input");
+    sub->add_flag("--pattern-interpolation", o->pattern_interpolation,
+                  "vfgs: TR 23002-9 7.2.4.2 pattern interpolation, blending the templates of neighbouring intensity "
+                  "intervals near their boundary (compiled out of the reference: not bit-exact with it)");
     sub->add_option("--matrix-coefficients", o->matrix_coefficients,
                     "AV1: the stream's matrix_coefficients (0 = identity changes the chroma clip); default from the "
                     "parameter file, else 2");

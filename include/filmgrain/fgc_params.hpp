@@ -15,7 +15,12 @@ enum class FgcCodec : int { kAvc = 0, kHevc = 1, kVvc = 2 };
 //         seed from POC + (idr_pic_id << 5), 8x8 adaptation at every picture size.
 //  kVtm:  HM/VTM master (JVET-X0048): VVC DCT-2 matrix, POC-only seed, 8/16/32 blocks by size.
 //  kVfgs: InterDigital VersatileFilmGrain (TR 23002-9 7.5): sample-based adaptation.
-enum class FgcFlavour : int { kRdd5 = 0, kVtm = 1, kVfgs = 2 };
+//  kTr:   no reference to be bit-exact with: the rdd5 arithmetic extended with what TR 23002-9
+//         clause 7 and the SEI semantics allow and the references reject: the auto-regressive
+//         model (film_grain_model_id 1), multiplicative blending (blending_mode_id 1) and a
+//         film grain bit depth of its own (separate_colour_description_present_flag 1).
+//         Parameter sets the rdd5 flavour accepts give the rdd5 output bit for bit.
+enum class FgcFlavour : int { kRdd5 = 0, kVtm = 1, kVfgs = 2, kTr = 3 };
 
 // How an FGC SEI's persistence is honoured for pictures that carry no SEI.
 //  kReference: as HM does it: a picture without an SEI reuses the last SEI whatever its

@@ -27,6 +27,14 @@ struct Options {
     // TR 23002-9 7.2.4.2 / 7.5.4 pattern interpolation, compiled out of the
     // reference. Off = bit-exact with the reference.
     bool pattern_interpolation = false;
+    // The block size, as FgcOptions::block_size: 0 or 16, the only one VFGS has. VFGS has
+    // no averaging block (its adaptation is per sample); its 16x16 block is the unit of
+    // randomization, and the reference's structure is built on it: the LFSR bit fields
+    // give offsets 0..48 / 0..44 in steps of 4 that keep 16 samples inside the 64x64
+    // template, a frame is processed in 16-row stripes with one register value per block,
+    // and the vertical overlap blends rows 16k and 16k+1 (4:2:0 chroma 8k). 8 or 32 would
+    // change all three and is not a VFGS any more: it throws Error(kUnsupported).
+    int block_size = 0;
 };
 
 class Synthesizer {

@@ -17,10 +17,20 @@ struct FgcSynthesizer::Active {
 
 FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
     if (options.flavour == FgcFlavour::kVfgs)
-        throw Error(ErrorCode::kInvalidArgument, "FgcSynthesizer handles the rdd5 and vtm flavours; vfgs has its own");
+        throw Error(ErrorCode::kInvalidArgument, "FgcSynthesizer handles the rdd5, vtm and tr flavours; vfgs has its own");
     if (options.block_size != 0 && options.block_size != 8 && options.block_size != 16 && options.block_size != 32)
         throw Error(ErrorCode::kInvalidArgument, "block_size = " + std::to_string(options.block_size) +
                                                      " is not allowed (allowed 0 = flavour default, 8, 16, 32)");
+    const int n = options.single_line_blocks;
+    if (n != 0 && n != 8 && n != 16 && n != 32)
+        throw Error(ErrorCode::kInvalidArgument, "single-line blocks of " + std::to_string(n) +
+                                                     "x1 are not allowed (allowed 0 = square blocks, 8, 16, 32)");
+    if (n != 0 && options.flavour == FgcFlavour::kRdd5)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "single-line blocks are an option of the vtm and tr flavours (RDD 5 fixes 8x8 blocks)");
+    if (n != 0 && options.block_size != 0 && options.block_size != n)
+        throw Error(ErrorCode::kInvalidArgument, "single-line blocks of " + std::to_string(n) + "x1 set the block size to " +
+                                                     std::to_string(n) + ", not " + std::to_string(options.block_size));
 }
 
 FgcSynthesizer::~FgcSynthesizer() = default;
@@ -36,7 +46,10 @@ void FgcSynthesizer::reset() {
     active_.reset();
 }
 
-int FgcSynthesizer::templates_built() const { return synthesis_ ? synthesis_->templates().built_count() : 0; }
+int FgcSynthesizer::templates_built() const {
+    return (synthesis_ ? synthesis_->templates().built_count() : 0) +
+           (tr_synthesis_ ? tr_synthesis_->templates_built() : 0);
+}
 
 std::size_t FgcSynthesizer::scratch_bytes() const { return synthesis_ ? synthesis_->scratch_bytes() : 0; }
 
@@ -153,15 +166,22 @@ FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst,
     }
     const int coded_w = options_.coded_width ? options_.coded_width : (src.width + 15) & ~15;
     const int coded_h = options_.coded_height ? options_.coded_height : (src.height + 15) & ~15;
-    const int bs = options_.block_size ? options_.block_size
-                                       : fgc::default_block_size(options_.flavour, coded_w, coded_h);
-    if (!synthesis_ || synthesis_->block_size() != bs)
-        synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(
-            options_.flavour, bs, options_.threads,
-            options_.reference_kernels ? fgc::Kernels::kReference : fgc::Kernels::kOptimized);
+    const int bs = options_.single_line_blocks ? options_.single_line_blocks
+                   : options_.block_size       ? options_.block_size
+                                               : fgc::default_block_size(options_.flavour, coded_w, coded_h);
     int32_t pic_offset = ids.poc;
-    if (options_.flavour == FgcFlavour::kRdd5) pic_offset = ids.poc + int32_t(uint32_t(ids.idr_pic_id) << 5);
-    synthesis_->apply(*a.resolved, src, dst, pic_offset);
+    if (options_.flavour != FgcFlavour::kVtm) pic_offset = ids.poc + int32_t(uint32_t(ids.idr_pic_id) << 5);
+    if (options_.flavour == FgcFlavour::kTr || options_.single_line_blocks) {
+        if (!tr_synthesis_ || tr_synthesis_->block_size() != bs)
+            tr_synthesis_ = std::make_unique<fgc::TrFrameSynthesis>(options_.flavour, bs, options_.single_line_blocks);
+        tr_synthesis_->apply(*a.resolved, src, dst, pic_offset);
+    } else {
+        if (!synthesis_ || synthesis_->block_size() != bs)
+            synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(
+                options_.flavour, bs, options_.threads,
+                options_.reference_kernels ? fgc::Kernels::kReference : fgc::Kernels::kOptimized);
+        synthesis_->apply(*a.resolved, src, dst, pic_offset);
+    }
     bool any = false;
     for (int c = 0; c < src.plane_count(); c++) any |= a.resolved->comp[c].present;
     result.grain_applied = any;

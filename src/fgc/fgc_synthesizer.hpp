@@ -8,6 +8,7 @@
 
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/params_resolution.hpp"
+#include "fgc/tr_synthesis.hpp"
 #include "filmgrain/fgc_params.hpp"
 #include "filmgrain/frame.hpp"
 
@@ -17,6 +18,10 @@ struct FgcOptions {
     FgcFlavour flavour = FgcFlavour::kRdd5;
     FgcPersistence persistence = FgcPersistence::kReference;
     int block_size = 0;  // 0: the flavour's own choice; 8, 16 or 32 to force one
+    // Single-line blocks (TR 23002-9 7.3.2.3), vtm and tr flavours: 8, 16 or 32 averages the
+    // intensity over Nx1 segments of a row and uses one template per component and picture
+    // (the first intensity interval's); N is then the block size. 0: square blocks.
+    int single_line_blocks = 0;
     // vtm: HM picks the block size from the *coded* picture size (SPS
     // pic_width/height_in_luma_samples), which a decoded picture does not carry. 0 means
     // the picture size rounded up to a multiple of 16, as encoders with a 16x16 minimum
@@ -69,6 +74,7 @@ private:
     FgcCodec pending_codec_ = FgcCodec::kHevc;
     std::unique_ptr<Active> active_;
     std::unique_ptr<fgc::FgcFrameSynthesis> synthesis_;
+    std::unique_ptr<fgc::TrFrameSynthesis> tr_synthesis_;  // tr flavour, single-line blocks
 };
 
 }  // namespace filmgrain

@@ -41,4 +41,26 @@ int block_average_replicated(const PlaneView& plane, int x0, int y0, int size, i
     return int(std::min<uint64_t>(sum >> (log2_area + bit_depth - 8), 255));
 }
 
+// Single-line blocks (TR 23002-9 7.3.2.3): the average of an n x 1 segment of row y, for
+// line-based hardware that keeps no line buffer. The two variants follow the block
+// averages above: samples inside the plane only, or the segment of the edge-replicated
+// picture shifted by log2(n) + bd - 8.
+template <typename Pixel>
+int segment_average_inside(const PlaneView& plane, int x0, int y, int n, int bit_depth) {
+    const int w = std::min(n, plane.width - x0);
+    const Pixel* row = plane.row<const Pixel>(y) + x0;
+    uint32_t sum = 0;
+    for (int x = 0; x < w; x++) sum += row[x];
+    return int(std::min<uint32_t>((sum / uint32_t(w)) >> (bit_depth - 8), 255));
+}
+
+template <typename Pixel>
+int segment_average_replicated(const PlaneView& plane, int x0, int y, int n, int bit_depth) {
+    const int log2_n = n == 8 ? 3 : n == 16 ? 4 : 5;
+    const Pixel* row = plane.row<const Pixel>(std::min(y, plane.height - 1));
+    uint32_t sum = 0;
+    for (int x = 0; x < n; x++) sum += row[std::min(x0 + x, plane.width - 1)];
+    return int(std::min<uint32_t>(sum >> (log2_n + bit_depth - 8), 255));
+}
+
 }  // namespace filmgrain::fgc

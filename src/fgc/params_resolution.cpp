@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "fgc/ar_template_generation.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::fgc {
@@ -79,36 +80,59 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
         return r;
     }
     check_fgc_syntax_ranges(p);
-    if (p.film_grain_model_id != 0)
-        throw Error(ErrorCode::kUnsupported,
-                    "film_grain_model_id = " + std::to_string(p.film_grain_model_id) +
-                        " is not supported by this flavour (allowed 0..0: frequency filtering; use --flavour vfgs for 1)");
-    if (p.separate_colour_description_present_flag)
-        throw Error(ErrorCode::kUnsupported,
-                    "separate_colour_description_present_flag = 1 is not supported by this flavour (allowed 0..0)");
-    if (p.blending_mode_id != 0)
-        throw Error(ErrorCode::kUnsupported, "blending_mode_id = " + std::to_string(p.blending_mode_id) +
-                                                 " is not supported by this flavour (allowed 0..0: additive)");
+    const bool tr = flavour == FgcFlavour::kTr;
+    if (!tr) {
+        const std::string name = flavour == FgcFlavour::kVtm ? "vtm" : "rdd5";
+        if (p.film_grain_model_id != 0)
+            throw Error(ErrorCode::kUnsupported,
+                        "film_grain_model_id = " + std::to_string(p.film_grain_model_id) + " is not supported by the " +
+                            name +
+                            " flavour (allowed 0..0: frequency filtering; --flavour tr synthesizes the "
+                            "auto-regressive model 1, --flavour vfgs its luma)");
+        if (p.separate_colour_description_present_flag)
+            throw Error(ErrorCode::kUnsupported, "separate_colour_description_present_flag = 1 is not supported by the " +
+                                                     name + " flavour (allowed 0..0; --flavour tr supports 1)");
+        if (p.blending_mode_id != 0)
+            throw Error(ErrorCode::kUnsupported,
+                        "blending_mode_id = " + std::to_string(p.blending_mode_id) + " is not supported by the " + name +
+                            " flavour (allowed 0..0: additive; --flavour tr supports 1, multiplicative)");
+    } else {
+        if (p.film_grain_model_id > 1)
+            throw Error(ErrorCode::kUnsupported, out_of_range_message("film_grain_model_id", p.film_grain_model_id, 0, 1) +
+                                                     " (2 and 3 are reserved)");
+        if (p.blending_mode_id > 1)
+            throw Error(ErrorCode::kUnsupported,
+                        out_of_range_message("blending_mode_id", p.blending_mode_id, 0, 1) + " (2 and 3 are reserved)");
+    }
+    const int model = p.film_grain_model_id;
+    r.model_id = model;
+    r.blending_mode_id = p.blending_mode_id;
+    for (int c = 0; c < 3; c++)
+        r.grain_bit_depth[c] = !p.separate_colour_description_present_flag ? fmt.bit_depth
+                               : c == 0 ? p.film_grain_bit_depth_luma_minus8 + 8
+                                        : p.film_grain_bit_depth_chroma_minus8 + 8;
 
     const int num_comp = fmt.chroma == ChromaFormat::k400 ? 1 : 3;
     bool any_present = false;
     for (int c = 0; c < num_comp; c++) any_present |= p.comp[c].comp_model_present_flag;
     // HM-2020 checks the scale factor always; HM master only when some component has grain.
-    if (flavour == FgcFlavour::kRdd5 || any_present)
-        if (p.log2_scale_factor < 2 || p.log2_scale_factor > 7)
-            invalid(out_of_range_message("log2_scale_factor", p.log2_scale_factor, 2, 7));
+    // tr: the synthesis shift is log2_scale_factor + 6 - model_id (auto-regressive templates
+    // carry one bit more, as in VFGS), and both models keep it in 8..13.
+    if (flavour == FgcFlavour::kRdd5 || tr || any_present)
+        if (p.log2_scale_factor < 2 + model || p.log2_scale_factor > 7 + model)
+            invalid(out_of_range_message("log2_scale_factor", p.log2_scale_factor, 2 + model, 7 + model) +
+                    (model ? " (film_grain_model_id 1)" : ""));
     r.log2_scale_factor = p.log2_scale_factor;
 
     for (int c = 0; c < num_comp; c++) {
         const auto& m = p.comp[c];
-        if (m.comp_model_present_flag && m.num_model_values_minus1 + 1 > 3)
+        if (model == 0 && m.comp_model_present_flag && m.num_model_values_minus1 + 1 > 3)
             throw Error(ErrorCode::kUnsupported,
                         out_of_range_message("num_model_values_minus1[" + std::to_string(c) + "]",
                                              m.num_model_values_minus1, 0, 2) +
                             " (the frequency-filtering flavours use at most 3 model values)");
     }
 
-    const long long max_scale = 255LL << (fmt.bit_depth - 8);
     for (int c = 0; c < num_comp; c++) {
         const auto& m = p.comp[c];
         auto& rc = r.comp[c];
@@ -116,6 +140,12 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
         if (!m.comp_model_present_flag) continue;
         rc.present = true;
         const int nmv = m.num_model_values_minus1 + 1;
+        // comp_model_value[c][i][0] up to 2^bitDepth - 1 as HM checks it, 255 << (bitDepth - 8),
+        // with the film grain bit depth when the SEI gives one (tr).
+        const long long max_scale = 255LL << (r.grain_bit_depth[c] - 8);
+        const char* max_scale_why = p.separate_colour_description_present_flag
+                                        ? " = 255 << (film grain bit depth - 8))"
+                                        : " = 255 << (bit_depth - 8))";
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
             const std::string idx = "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
@@ -134,12 +164,28 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
             }
             ResolvedInterval ri;
             ri.scale = iv.comp_model_value[0];
+            if (ri.scale > max_scale)
+                invalid(cmv(c, int(i), 0) + " = " + std::to_string(ri.scale) + " is out of range (allowed ..." +
+                        std::to_string(max_scale) + max_scale_why);
+            if (model == 1) {
+                // Auto-regressive model (tr). No chroma conversion is defined for it: the
+                // coefficients are correlations between neighbouring samples of the component
+                // itself, so the values are used as signalled.
+                ri.ar = complete_ar_model_values(iv.comp_model_value, nmv, p.log2_scale_factor);
+                const int one = 1 << p.log2_scale_factor;
+                for (int j : {1, 2, 3, 5})
+                    if (ri.ar[j] < -one || ri.ar[j] > one)
+                        invalid(out_of_range_message(cmv(c, int(i), j), ri.ar[j], -one, one) +
+                                " (a correlation from -1 to 1 in units of 2^-log2_scale_factor)");
+                if (ri.ar[4] < 0 || ri.ar[4] > 4 * one)
+                    invalid(out_of_range_message(cmv(c, int(i), 4), ri.ar[4], 0, 4 * one) +
+                            " (an aspect ratio from 0 to 4 in units of 2^-log2_scale_factor)");
+                rc.intervals.push_back(ri);
+                continue;
+            }
             // TR 23002-9 7.3.1 defaults: horizontal cut-off 8, vertical = horizontal.
             ri.cutoff_h = nmv >= 2 ? iv.comp_model_value[1] : 8;
             ri.cutoff_v = nmv >= 3 ? iv.comp_model_value[2] : ri.cutoff_h;
-            if (ri.scale > max_scale)
-                invalid(cmv(c, int(i), 0) + " = " + std::to_string(ri.scale) + " is out of range (allowed ..." +
-                        std::to_string(max_scale) + " = 255 << (bit_depth - 8))");
             if (ri.cutoff_h < 2 || ri.cutoff_h > 14)
                 invalid(out_of_range_message(nmv >= 2 ? cmv(c, int(i), 1) : "default horizontal cut-off", ri.cutoff_h, 2, 14));
             if (ri.cutoff_v < 2 || ri.cutoff_v > 14)

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "conformance_case.hpp"
 #include "core/md5.hpp"
@@ -28,12 +29,17 @@ std::vector<std::string> fgc_cases() {
 
 enum class Source { kSeiPayload, kCaseJson };
 
-void run(const std::string& name, Source source, FgcPersistence persistence) {
+// flavour_override: run the case through another flavour that must give the same pictures
+// (tr on the rdd5 cases: the tr flavour is the rdd5 arithmetic where rdd5 accepts the SEI).
+void run(const std::string& name, Source source, FgcPersistence persistence,
+         std::optional<FgcFlavour> flavour_override = std::nullopt) {
     const ConformanceCase c = load_case(name);
     const bool avc = c.json.at("codec") == "h264";
     const FgcCodec codec = avc ? FgcCodec::kAvc : FgcCodec::kHevc;
     FgcOptions opt;
     opt.flavour = c.json.at("family") == "vtm" ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
+    const FgcFlavour family_flavour = opt.flavour;
+    if (flavour_override) opt.flavour = *flavour_override;
     opt.passthrough_invalid = true;  // the references output the clean picture
     opt.persistence = persistence;
     FgcSynthesizer synth(opt);
@@ -54,7 +60,7 @@ void run(const std::string& name, Source source, FgcPersistence persistence) {
         FgcPictureIds ids;
         ids.poc = fi.at("poc").get<int>();
         ids.idr_pic_id = fi.at("idr_pic_id").is_null() ? 0 : fi.at("idr_pic_id").get<int>();
-        if (opt.flavour == FgcFlavour::kRdd5) {
+        if (family_flavour == FgcFlavour::kRdd5) {
             EXPECT_EQ(ids.poc + (ids.idr_pic_id << 5), fi.at("pic_offset").get<int>());
         }
         FrameBuffer in = c.input_frame(k), out(c.width, c.height, c.format);
@@ -83,6 +89,15 @@ TEST_P(FgcConformance, SeiPayloadsThroughLibrary) { run(GetParam(), Source::kSei
 TEST_P(FgcConformance, CaseJsonThroughLibrary) { run(GetParam(), Source::kCaseJson, FgcPersistence::kReference); }
 
 INSTANTIATE_TEST_SUITE_P(Cases, FgcConformance, ::testing::ValuesIn(fgc_cases()),
+                         [](const auto& info) { return info.param; });
+
+// The tr flavour must reproduce every rdd5 golden: it is the rdd5 arithmetic wherever rdd5
+// accepts the SEI, and only adds what rdd5 rejects.
+class FgcConformanceTr : public ::testing::TestWithParam<std::string> {};
+TEST_P(FgcConformanceTr, Rdd5GoldensThroughTrFlavour) {
+    run(GetParam(), Source::kSeiPayload, FgcPersistence::kReference, FgcFlavour::kTr);
+}
+INSTANTIATE_TEST_SUITE_P(Cases, FgcConformanceTr, ::testing::ValuesIn(list_cases("rdd5_")),
                          [](const auto& info) { return info.param; });
 
 TEST(FgcConformanceSet, AllCasesPresent) { EXPECT_EQ(fgc_cases().size(), 16u); }

@@ -52,6 +52,11 @@ Synthesizer::Synthesizer(const Options& options) : impl_(std::make_unique<Impl>(
         throw Error(ErrorCode::kInvalidArgument,
                     "vfgs: output bit depth = " + std::to_string(options.output_bit_depth) +
                         " (allowed 0 = same as input, 8, 10)");
+    if (options.block_size != 0 && options.block_size != 16)
+        throw Error(ErrorCode::kUnsupported,
+                    "vfgs: block size " + std::to_string(options.block_size) +
+                        " is not supported (allowed 0 or 16: VFGS randomizes 16x16 blocks, its LFSR bit fields give "
+                        "offsets for 16-sample blocks in 64x64 templates, and its overlap and stripes are 16 rows)");
     impl_->options = options;
     const uint32_t r0 = options.seed ? lfsr_state_from_seed(*options.seed) : kDefaultLfsrState;
     impl_->cursor = LfsrCursor{r0, r0};
