@@ -32,6 +32,7 @@ void TrFrameSynthesis::prepare(const ResolvedFgc& params) {
         auto& list = interval_template_[c];
         list.clear();
         for (const ResolvedInterval& ri : params.comp[c].intervals) {
+            if (single_line_ && !list.empty()) break;  // one template per component and picture
             if (params.model_id == 0) {
                 list.push_back(&cache_.ensure(ri.cutoff_h, ri.cutoff_v));
                 continue;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -189,6 +190,9 @@ TEST_F(ApplyTrCli, PatternInterpolationRemovesTheTemplateSwitchAtAnIntervalBound
     };
     const std::vector<double> off = texture(false), on = texture(true);
     const double switch_off = std::abs(off[32] - off[31]);  // levels 127 -> 128
+    std::printf("lag-1 autocorrelation at levels 127/128: %.3f/%.3f without, %.3f/%.3f with interpolation; "
+                "largest step between levels %.3f without, %.3f with\n",
+                off[31], off[32], on[31], on[32], largest_step(off), largest_step(on));
     EXPECT_GT(switch_off, 0.2);
     EXPECT_NEAR(largest_step(off), switch_off, 1e-9);  // the switch is the largest step
     EXPECT_LT(largest_step(on), switch_off / 3);
