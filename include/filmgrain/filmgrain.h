@@ -114,7 +114,8 @@ typedef struct fg_picture_ids {
 /* An FGC SEI message body (payloadType 19: no NAL header, no emulation prevention bytes).
  * picture: the picture it arrived with. Decoders that output in another order than they
  * decode pass the ids, and the SEI is taken by the fg_context_apply call with the same ids;
- * NULL means "the next picture applied". Up to 64 SEIs may wait. The payload is parsed at
+ * NULL means "the next picture applied". Several SEIs for one picture: the last pushed is
+ * used. Up to 64 SEIs may wait. The payload is parsed at
  * once (FG_ERROR_MALFORMED_PAYLOAD); its values are checked against the picture format at
  * apply time. */
 FG_API fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, fg_codec codec,

@@ -16,18 +16,24 @@ void PendingSeiQueue::push(PendingSei sei) {
 }
 
 std::optional<PendingSei> PendingSeiQueue::take_for(const FgcPictureIds& ids) {
-    auto take = [&](std::size_t i) {
-        PendingSei s = std::move(waiting_[i]);
-        waiting_.erase(waiting_.begin() + std::ptrdiff_t(i));
-        return s;
+    auto matches_ids = [&](const PendingSei& s) {
+        return s.picture && s.picture->poc == ids.poc && s.picture->idr_pic_id == ids.idr_pic_id;
     };
-    for (std::size_t i = 0; i < waiting_.size(); i++)
-        if (waiting_[i].picture && waiting_[i].picture->poc == ids.poc &&
-            waiting_[i].picture->idr_pic_id == ids.idr_pic_id)
-            return take(i);
-    for (std::size_t i = 0; i < waiting_.size(); i++)
-        if (!waiting_[i].picture) return take(i);
-    return std::nullopt;
+    auto without_ids = [](const PendingSei& s) { return !s.picture; };
+    // Several SEIs for one picture: the last one received is the one in force, as when a
+    // decoder hands them over one by one before the picture.
+    auto take_last = [&](auto&& pred) -> std::optional<PendingSei> {
+        std::optional<PendingSei> last;
+        std::vector<PendingSei> kept;
+        for (PendingSei& s : waiting_) {
+            if (pred(s)) last = std::move(s);
+            else kept.push_back(std::move(s));
+        }
+        waiting_ = std::move(kept);
+        return last;
+    };
+    if (auto s = take_last(matches_ids)) return s;
+    return take_last(without_ids);
 }
 
 }  // namespace filmgrain::capi
