@@ -1,7 +1,8 @@
 /* filmgrain C API: film grain synthesis for a decoder, one opaque context per stream.
  *
  * Plain C (C99), stable ABI: the context is opaque; structs the caller fills carry their
- * own size (struct_size) so that later versions can append fields; enums are plain ints.
+ * own size (struct_size) so that later versions can append fields; enum values travel as
+ * plain ints (fields and parameters), so an out-of-range value is an error, not UB.
  * No function aborts or lets an exception escape: every one returns an fg_status, and
  * fg_last_error(ctx) gives the message of the last failure on that context (naming the
  * field, its value and the allowed range where one is at fault).
@@ -48,7 +49,7 @@ typedef enum fg_status {
     FG_ERROR_INTERNAL = 7
 } fg_status;
 
-FG_API const char* fg_status_name(fg_status status); /* "FG_ERROR_INVALID_PARAMS", ... */
+FG_API const char* fg_status_name(int status); /* fg_status -> "FG_ERROR_INVALID_PARAMS", ... */
 
 /* Which bit-exact behaviour of the FGC SEI frequency-filtering model to reproduce. */
 typedef enum fg_flavour {
@@ -118,7 +119,7 @@ typedef struct fg_picture_ids {
  * used. Up to 64 SEIs may wait. The payload is parsed at
  * once (FG_ERROR_MALFORMED_PAYLOAD); its values are checked against the picture format at
  * apply time. */
-FG_API fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, fg_codec codec,
+FG_API fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, int codec,
                                          const fg_picture_ids* picture);
 
 /* AV1 film_grain_params() (AV1 5.9.30) of a frame header, raw bitstream values including
@@ -178,7 +179,7 @@ FG_API fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* paylo
  * the given codec), or an AV1 film_grain_params object or {"av1": {...}} (as
  * push_av1_params with refresh_frame_flags 0). Per-frame files ({"frames": [...]}) are
  * refused: push each frame's entry. */
-FG_API fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, fg_codec codec,
+FG_API fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, int codec,
                                       const fg_picture_ids* picture);
 
 /* A new coded video sequence, or a seek: forgets waiting SEIs, the parameters in force

@@ -232,7 +232,7 @@ unsigned fg_version(void) { return FG_VERSION; }
 
 const char* fg_version_string(void) { return "1.0.0"; }
 
-const char* fg_status_name(fg_status status) {
+const char* fg_status_name(int status) {
     switch (status) {
     case FG_OK: return "FG_OK";
     case FG_ERROR_INVALID_ARGUMENT: return "FG_ERROR_INVALID_ARGUMENT";
@@ -281,7 +281,7 @@ void fg_context_destroy(fg_context* ctx) { delete ctx; }
 
 const char* fg_last_error(const fg_context* ctx) { return ctx ? ctx->last_error.c_str() : kNullContext; }
 
-fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, fg_codec codec,
+fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, int codec,
                                   const fg_picture_ids* picture) {
     if (!ctx) return FG_ERROR_INVALID_ARGUMENT;
     return guarded(ctx->last_error, [&] {
@@ -312,7 +312,7 @@ fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* payload, siz
     });
 }
 
-fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, fg_codec codec,
+fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, int codec,
                                const fg_picture_ids* picture) {
     if (!ctx) return FG_ERROR_INVALID_ARGUMENT;
     return guarded(ctx->last_error, [&] {

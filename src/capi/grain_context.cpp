@@ -39,8 +39,8 @@ void check_codec(FgcCodec codec) {
     if (c < 0 || c > 2) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("codec", c, 0, 2));
 }
 
+// copy_plane leaves a plane alone when dst is src (in place).
 void copy_frame(const FrameView& src, const FrameView& dst) {
-    if (src.planes[0].data == dst.planes[0].data) return;
     for (int c = 0; c < src.plane_count(); c++) fgc::copy_plane(src.planes[c], dst.planes[c], src.bytes_per_sample());
 }
 

@@ -279,7 +279,7 @@ static void test_errors(void) {
     const char* frames = "{\"frames\": [{\"poc\": 0}]}";
     CHECK_STATUS(ctx, fg_context_push_json(ctx, frames, strlen(frames), FG_CODEC_HEVC, NULL), FG_ERROR_UNSUPPORTED,
                  "frames");
-    CHECK_STATUS(ctx, fg_context_push_json(ctx, kFgcJson, strlen(kFgcJson), (fg_codec)5, NULL),
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, kFgcJson, strlen(kFgcJson), 5, NULL),
                  FG_ERROR_INVALID_ARGUMENT, "codec");
     const uint8_t truncated[1] = {0x00}; /* cancel_flag 0, then the payload ends */
     CHECK_STATUS(ctx, fg_context_push_fgc_sei(ctx, truncated, sizeof truncated, FG_CODEC_HEVC, NULL),
@@ -532,6 +532,7 @@ static void test_version(void) {
     CHECK(fg_version() == FG_VERSION);
     CHECK(strcmp(fg_version_string(), "1.0.0") == 0);
     CHECK(strcmp(fg_status_name(FG_ERROR_INVALID_PARAMS), "FG_ERROR_INVALID_PARAMS") == 0);
+    CHECK(strcmp(fg_status_name(99), "unknown fg_status") == 0);
 }
 
 typedef struct named_test {

@@ -8,6 +8,7 @@
 #include <filmgrain/filmgrain.h>
 #include <filmgrain/filmgrain.hpp>
 
+#include "conformance_case.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
 
@@ -98,6 +99,43 @@ TEST(CppFacade, MovedContextKeepsItsState) {
     fresh.receive_json(kSei);
     fresh.apply(b.view(), b.view());
     EXPECT_EQ(md5_hex(a.bytes(), a.byte_size()), md5_hex(b.bytes(), b.byte_size()));
+}
+
+}  // namespace
+
+namespace {
+
+// Each frame's parameter set of a conformance case, handed over as JSON text as an
+// application would read it from a file: the goldens must come out.
+void run_case_through_json(const std::string& name) {
+    const filmgrain::testing::ConformanceCase c = filmgrain::testing::load_case(name);
+    ContextOptions o;
+    o.flavour = c.json.at("family") == "vtm" ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
+    o.passthrough_invalid = true;
+    GrainContext ctx(o);
+    const bool av1 = c.json.at("family") == "av1";
+    for (int k = 0; k < c.frames; k++) {
+        const auto& fi = c.frame_info(k);
+        FrameInfo info;
+        if (av1) {
+            ctx.receive_json(fi.at("params").dump());  // {"av1": {...}, "matrix_coefficients": ...}
+        } else {
+            info.ids.poc = fi.at("poc").get<int>();
+            info.ids.idr_pic_id = fi.at("idr_pic_id").is_null() ? 0 : fi.at("idr_pic_id").get<int>();
+            if (fi.at("sei_present").get<bool>())
+                ctx.receive_json(fi.at("params").dump(), c.json.at("codec") == "h264" ? FgcCodec::kAvc : FgcCodec::kHevc,
+                                 info.ids);
+        }
+        FrameBuffer in = c.input_frame(k), out(c.width, c.height, c.format);
+        ctx.apply(in.view(), out.view(), &info);
+        EXPECT_EQ(md5_hex(out.bytes(), out.byte_size()), c.expected_md5(k)) << name << " frame " << k;
+    }
+}
+
+TEST(CppFacade, JsonParameterSetsReproduceGoldens) {
+    for (const char* name : {"av1_tv01_352x288_420p10", "av1_tbl_mono_176x144_gray", "rdd5_352x288_420p8_rand",
+                             "rdd5_h264_352x288_420p8_idr", "vtm_352x288_420p8_invalid_mix"})
+        run_case_through_json(name);
 }
 
 }  // namespace
