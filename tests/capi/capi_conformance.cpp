@@ -17,7 +17,7 @@
 #include "metadata/av1_params_json.hpp"
 
 using namespace filmgrain;
-using namespace filmgrain::testing;
+using namespace filmgrain::test_support;
 namespace fs = std::filesystem;
 
 namespace {

@@ -108,7 +108,7 @@ namespace {
 // Each frame's parameter set of a conformance case, handed over as JSON text as an
 // application would read it from a file: the goldens must come out.
 void run_case_through_json(const std::string& name) {
-    const filmgrain::testing::ConformanceCase c = filmgrain::testing::load_case(name);
+    const filmgrain::test_support::ConformanceCase c = filmgrain::test_support::load_case(name);
     ContextOptions o;
     o.flavour = c.json.at("family") == "vtm" ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
     o.passthrough_invalid = true;
