@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "filmgrain/export.h"
+
 namespace filmgrain {
 
 enum class ErrorCode : int {
@@ -17,7 +19,7 @@ enum class ErrorCode : int {
     kInternal = 7,
 };
 
-class Error : public std::runtime_error {
+class FG_API Error : public std::runtime_error {
 public:
     Error(ErrorCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
     ErrorCode code() const { return code_; }
@@ -27,6 +29,6 @@ private:
 };
 
 // Helper for the "field=value, allowed range" wording every validator uses.
-std::string out_of_range_message(const std::string& field, long long value, long long lo, long long hi);
+FG_API std::string out_of_range_message(const std::string& field, long long value, long long lo, long long hi);
 
 }  // namespace filmgrain

@@ -1,0 +1,227 @@
+/* filmgrain C API: film grain synthesis for a decoder, one opaque context per stream.
+ *
+ * Plain C (C99), stable ABI: the context is opaque; structs the caller fills carry their
+ * own size (struct_size) so that later versions can append fields; enum values travel as
+ * plain ints (fields and parameters), so an out-of-range value is an error, not UB.
+ * No function aborts or lets an exception escape: every one returns an fg_status, and
+ * fg_last_error(ctx) gives the message of the last failure on that context (naming the
+ * field, its value and the allowed range where one is at fault).
+ *
+ * Flow per stream:
+ *   fg_options o; fg_options_init(&o);  o.flavour = FG_FLAVOUR_RDD5; ...
+ *   fg_context* ctx; fg_context_create(&o, &ctx, NULL, 0);
+ *   for each decoded access unit:  fg_context_push_fgc_sei(...)  / fg_context_push_av1_params(...)
+ *   for each output picture:       fg_context_apply(ctx, &src, &dst_or_NULL, &info)
+ *   fg_context_destroy(ctx);
+ *
+ * Contexts share nothing: different contexts may be used from different threads at the
+ * same time; one context must not be used by two threads at once. */
+#ifndef FILMGRAIN_FILMGRAIN_H
+#define FILMGRAIN_FILMGRAIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "filmgrain/export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Version of this header. The library's own is fg_version(); the ABI (SONAME) changes only
+ * with the major number. */
+#define FG_VERSION_MAJOR 1
+#define FG_VERSION_MINOR 0
+#define FG_VERSION_PATCH 0
+#define FG_VERSION ((FG_VERSION_MAJOR << 16) | (FG_VERSION_MINOR << 8) | FG_VERSION_PATCH)
+
+FG_API unsigned fg_version(void);            /* FG_VERSION of the library */
+FG_API const char* fg_version_string(void);  /* "1.0.0" */
+
+typedef enum fg_status {
+    FG_OK = 0,
+    FG_ERROR_INVALID_ARGUMENT = 1,   /* caller error: NULL pointer, sizes, formats, options */
+    FG_ERROR_INVALID_PARAMS = 2,     /* a parameter set breaks the model's constraints */
+    FG_ERROR_MALFORMED_PAYLOAD = 3,  /* a metadata payload or JSON text cannot be parsed */
+    FG_ERROR_UNSUPPORTED = 4,        /* valid but not implemented (by this flavour / build) */
+    FG_ERROR_IO = 5,
+    FG_ERROR_OUT_OF_MEMORY = 6,
+    FG_ERROR_INTERNAL = 7
+} fg_status;
+
+FG_API const char* fg_status_name(int status); /* fg_status -> "FG_ERROR_INVALID_PARAMS", ... */
+
+/* Which bit-exact behaviour of the FGC SEI frequency-filtering model to reproduce. */
+typedef enum fg_flavour {
+    FG_FLAVOUR_RDD5 = 0, /* SMPTE RDD 5 / FFmpeg: seed from POC + (idr_pic_id << 5) */
+    FG_FLAVOUR_VTM = 1,  /* HM/VTM reference software: POC-only seed, block size by coded size */
+    FG_FLAVOUR_VFGS = 2  /* InterDigital VersatileFilmGrain (TR 23002-9 7.5) */
+} fg_flavour;
+
+/* How an FGC SEI persists over pictures that carry none. */
+typedef enum fg_persistence {
+    FG_PERSISTENCE_REFERENCE = 0, /* as HM: the last SEI is reused whatever its flag */
+    FG_PERSISTENCE_SEMANTIC = 1   /* as the SEI semantics: persistence_flag = 0 (H.264:
+                                     repetition_period = 0) covers its own picture only */
+} fg_persistence;
+
+typedef enum fg_codec { FG_CODEC_AVC = 0, FG_CODEC_HEVC = 1, FG_CODEC_VVC = 2 } fg_codec;
+
+typedef enum fg_chroma_format {
+    FG_CHROMA_400 = 0,
+    FG_CHROMA_420 = 1,
+    FG_CHROMA_422 = 2,
+    FG_CHROMA_444 = 3
+} fg_chroma_format;
+
+typedef struct fg_options {
+    uint32_t struct_size;     /* sizeof(fg_options); set by fg_options_init */
+    int flavour;              /* fg_flavour; FGC SEI only (AV1 grain has one behaviour) */
+    int persistence;          /* fg_persistence; rdd5 and vtm */
+    int passthrough_invalid;  /* 1: an invalid parameter set leaves pictures untouched (as the
+                                 reference decoders output them) and fg_context_apply returns
+                                 FG_OK with info->grain_applied = 0 and the reason in
+                                 fg_last_error; 0: fg_context_apply fails */
+    int threads;              /* >= 0; 0 = all cores. Accepted; synthesis is single-threaded today */
+    int coded_width;          /* vtm: the SPS coded luma size, which picks HM's block size; */
+    int coded_height;         /*      0 = the picture size rounded up to a multiple of 16 */
+    int vfgs_has_seed;        /* vfgs: 1 = start the LFSR from vfgs_seed (the reference's -r) */
+    uint32_t vfgs_seed;
+    int vfgs_gain_percent;    /* vfgs: global grain strength in percent, default 100 */
+} fg_options;
+
+/* Defaults: rdd5, reference persistence, errors on invalid parameters, threads 0. */
+FG_API void fg_options_init(fg_options* options);
+
+typedef struct fg_context fg_context;
+
+/* options may be NULL (defaults). On failure *out is NULL and, when message is not NULL,
+ * the reason is written there (NUL-terminated, truncated to message_size). */
+FG_API fg_status fg_context_create(const fg_options* options, fg_context** out, char* message, size_t message_size);
+FG_API void fg_context_destroy(fg_context* ctx); /* NULL is allowed */
+
+/* The message of the last failure (or passthrough notice) on ctx; "" when the last call
+ * succeeded without notice. Valid until the next call on ctx. ctx NULL gives a fixed text. */
+FG_API const char* fg_last_error(const fg_context* ctx);
+
+/* Picture identifiers of the FGC seed derivation. */
+typedef struct fg_picture_ids {
+    int32_t poc;         /* PicOrderCnt (H.264: TopFieldOrderCnt of a frame) */
+    int32_t idr_pic_id;  /* H.264: idr_pic_id of the latest IDR picture; 0 elsewhere */
+} fg_picture_ids;
+
+/* ---- metadata, handed over as it arrives ------------------------------------------- */
+
+/* An FGC SEI message body (payloadType 19: no NAL header, no emulation prevention bytes).
+ * picture: the picture it arrived with. Decoders that output in another order than they
+ * decode pass the ids, and the SEI is taken by the fg_context_apply call with the same ids;
+ * NULL means "the next picture applied". Several SEIs for one picture: the last pushed is
+ * used. Up to 64 SEIs may wait. The payload is parsed at
+ * once (FG_ERROR_MALFORMED_PAYLOAD); its values are checked against the picture format at
+ * apply time. */
+FG_API fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, int codec,
+                                         const fg_picture_ids* picture);
+
+/* AV1 film_grain_params() (AV1 5.9.30) of a frame header, raw bitstream values including
+ * the +128 / +256 biases. Only the first num_*_points entries and the AR coefficients the
+ * lag uses are read. */
+typedef struct fg_av1_params {
+    uint32_t struct_size; /* sizeof(fg_av1_params); set by fg_av1_params_init */
+    int apply_grain;
+    int grain_seed;
+    int update_grain;
+    int film_grain_params_ref_idx;
+    int num_y_points;
+    int point_y_value[14];
+    int point_y_scaling[14];
+    int chroma_scaling_from_luma;
+    int num_cb_points;
+    int point_cb_value[10];
+    int point_cb_scaling[10];
+    int num_cr_points;
+    int point_cr_value[10];
+    int point_cr_scaling[10];
+    int grain_scaling_minus_8;
+    int ar_coeff_lag;
+    int ar_coeffs_y_plus_128[24];
+    int ar_coeffs_cb_plus_128[25];
+    int ar_coeffs_cr_plus_128[25];
+    int ar_coeff_shift_minus_6;
+    int grain_scale_shift;
+    int cb_mult, cb_luma_mult, cb_offset;
+    int cr_mult, cr_luma_mult, cr_offset;
+    int overlap_flag;
+    int clip_to_restricted_range;
+    int matrix_coefficients; /* color_config(); 0 (identity) changes the restricted chroma range */
+} fg_av1_params;
+
+/* No grain, AR coefficients 128 (zero), mult/offset at their neutral values, matrix 2. */
+FG_API void fg_av1_params_init(fg_av1_params* params);
+
+/* The film grain parameters of a frame header; they apply from the next fg_context_apply
+ * until replaced. update_grain = 0 loads the parameters stored in reference slot
+ * film_grain_params_ref_idx and keeps this header's grain_seed (AV1 7.20 load_grain_params);
+ * the resolved parameters are then stored in every slot whose bit is set in
+ * refresh_frame_flags (AV1 7.20 reference frame update). */
+FG_API fg_status fg_context_push_av1_params(fg_context* ctx, const fg_av1_params* params,
+                                            unsigned refresh_frame_flags);
+
+/* show_existing_frame = 1: the next picture applied takes the parameters stored in
+ * slot frame_to_show_map_idx (0..7). */
+FG_API fg_status fg_context_show_existing_av1_frame(fg_context* ctx, int frame_to_show_map_idx);
+
+/* An AOM film grain synthesis 1 (AFGS1) ITU-T T.35 metadata payload. This build has no
+ * AFGS1 parser: returns FG_ERROR_UNSUPPORTED. */
+FG_API fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* payload, size_t size);
+
+/* One parameter set in the project's JSON form (see README "Parameter files"): an FGC SEI
+ * object or {"fgc": {...}} (taken as an SEI arriving with `picture`, see push_fgc_sei, with
+ * the given codec), or an AV1 film_grain_params object or {"av1": {...}} (as
+ * push_av1_params with refresh_frame_flags 0). Per-frame files ({"frames": [...]}) are
+ * refused: push each frame's entry. */
+FG_API fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, int codec,
+                                      const fg_picture_ids* picture);
+
+/* A new coded video sequence, or a seek: forgets waiting SEIs, the parameters in force
+ * and the AV1 reference slots; picture counting restarts at 0. */
+FG_API fg_status fg_context_reset(fg_context* ctx);
+
+/* ---- frames ------------------------------------------------------------------------- */
+
+/* A picture in planar memory. Samples are uint8_t at bit depth 8 and host-order uint16_t
+ * above. strides are in bytes and may be negative (planes[p] then points at the top row of
+ * a bottom-up buffer). Chroma planes are ceil(width / 2) wide for 4:2:0 and 4:2:2 and
+ * ceil(height / 2) high for 4:2:0. planes[1..2] are ignored for FG_CHROMA_400. */
+typedef struct fg_frame {
+    void* planes[3];
+    ptrdiff_t strides[3];
+    int width;
+    int height;
+    int bit_depth;     /* 8..16 (AV1: 8, 10, 12) */
+    int chroma_format; /* fg_chroma_format */
+} fg_frame;
+
+/* Per-picture information, in and out. */
+typedef struct fg_frame_info {
+    uint32_t struct_size;   /* sizeof(fg_frame_info) */
+    fg_picture_ids ids;     /* in: this picture's ids (FGC seed derivation, SEI matching) */
+    int has_seed;           /* in: 1 = use `seed` instead of the derived seed: */
+    uint32_t seed;          /*   rdd5/vtm: the picture offset the seed is derived from (in place
+                                 of POC + (idr_pic_id << 5), resp. POC); AV1: grain_seed (16
+                                 bits); vfgs refuses it (the reference never reseeds) */
+    int grain_applied;      /* out: 1 when grain was added to at least one plane */
+} fg_frame_info;
+
+FG_API void fg_frame_info_init(fg_frame_info* info);
+
+/* Adds grain to src, writing dst; dst NULL (or equal to src) means in place. dst must
+ * have src's size, bit depth and format. info NULL: ids count 0, 1, 2, ... from the
+ * context's creation (or last reset), idr_pic_id 0. Without metadata in force the picture
+ * is copied unchanged. */
+FG_API fg_status fg_context_apply(fg_context* ctx, const fg_frame* src, const fg_frame* dst, fg_frame_info* info);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,272 @@
+// GrainContext: the per-stream state behind both public APIs. It routes metadata to the
+// model it belongs to (FgcSynthesizer for rdd5/vtm, vfgs::Synthesizer, AV1 synthesis) and
+// keeps what a decoder would otherwise have to: SEIs waiting for their output picture,
+// AV1 reference slots, the picture count for callers that pass no ids.
+#include "filmgrain/filmgrain.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "av1/av1_synthesis.hpp"
+#include "capi/av1_reference_slots.hpp"
+#include "capi/pending_sei_queue.hpp"
+#include "fgc/fgc_synthesis.hpp"
+#include "fgc/fgc_synthesizer.hpp"
+#include "filmgrain/vfgs.hpp"
+#include "metadata/av1_params_json.hpp"
+#include "metadata/fgc_sei.hpp"
+#include "metadata/params_file.hpp"
+
+namespace filmgrain {
+
+namespace {
+
+void check_options(const ContextOptions& o) {
+    const int flavour = static_cast<int>(o.flavour), persistence = static_cast<int>(o.persistence);
+    if (flavour < 0 || flavour > 2) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("flavour", flavour, 0, 2));
+    if (persistence < 0 || persistence > 1)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("persistence", persistence, 0, 1));
+    if (o.threads < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("threads", o.threads, 0, 1 << 16));
+    if (o.coded_width < 0 || o.coded_height < 0)
+        throw Error(ErrorCode::kInvalidArgument,
+                    out_of_range_message(o.coded_width < 0 ? "coded_width" : "coded_height",
+                                         o.coded_width < 0 ? o.coded_width : o.coded_height, 0, INT32_MAX));
+    if (o.vfgs_gain_percent < 0)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("vfgs_gain_percent", o.vfgs_gain_percent, 0, INT32_MAX));
+}
+
+void check_codec(FgcCodec codec) {
+    const int c = static_cast<int>(codec);
+    if (c < 0 || c > 2) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("codec", c, 0, 2));
+}
+
+// copy_plane leaves a plane alone when dst is src (in place).
+void copy_frame(const FrameView& src, const FrameView& dst) {
+    for (int c = 0; c < src.plane_count(); c++) fgc::copy_plane(src.planes[c], dst.planes[c], src.bytes_per_sample());
+}
+
+void check_views(const FrameView& src, const FrameView& dst) {
+    av1::check_frame_view(src, "src");
+    av1::check_frame_view(dst, "dst");
+    if (src.format != dst.format || src.bit_depth != dst.bit_depth || src.width != dst.width ||
+        src.height != dst.height)
+        throw Error(ErrorCode::kInvalidArgument, "dst differs from src in size, bit depth or chroma format");
+}
+
+// Only parameter-set problems pass through; caller errors (views, sizes) always fail.
+bool is_parameter_problem(ErrorCode code) {
+    return code == ErrorCode::kInvalidParams || code == ErrorCode::kUnsupported;
+}
+
+}  // namespace
+
+struct GrainContext::Impl {
+    enum class Model { kNone, kFgc, kAv1 };
+
+    ContextOptions options;
+    Model model = Model::kNone;
+    int pictures_applied = 0;
+
+    // FGC SEI: rdd5 / vtm through FgcSynthesizer, vfgs through its own synthesizer.
+    capi::PendingSeiQueue pending;
+    std::unique_ptr<FgcSynthesizer> fgc;
+    std::unique_ptr<vfgs::Synthesizer> vfgs;
+    std::string vfgs_invalid;  // why the vfgs parameter set in force cannot be used
+
+    // AV1
+    capi::Av1ReferenceSlots slots;
+    std::optional<Av1FilmGrainParams> av1;
+    int av1_matrix_coefficients = 2;
+
+    explicit Impl(const ContextOptions& o) : options(o) { make_synthesizers(); }
+
+    void make_synthesizers() {
+        if (options.flavour == FgcFlavour::kVfgs) {
+            vfgs::Options vo;
+            vo.seed = options.vfgs_seed;
+            vo.gain_percent = options.vfgs_gain_percent;
+            vfgs = std::make_unique<vfgs::Synthesizer>(vo);
+        } else {
+            FgcOptions fo;
+            fo.flavour = options.flavour;
+            fo.persistence = options.persistence;
+            fo.coded_width = options.coded_width;
+            fo.coded_height = options.coded_height;
+            fo.passthrough_invalid = options.passthrough_invalid;
+            fgc = std::make_unique<FgcSynthesizer>(fo);
+        }
+        vfgs_invalid.clear();
+    }
+
+    ApplyResult apply_fgc(const FrameView& src, const FrameView& dst, const FrameInfo& info) {
+        std::optional<capi::PendingSei> sei = pending.take_for(info.ids);
+        ApplyResult r;
+        if (fgc) {
+            if (sei) fgc->receive_sei(sei->params, sei->codec);
+            FgcPictureIds ids = info.ids;
+            if (info.seed) {
+                // Both flavours derive the seed from pic_offset = POC + (idr_pic_id << 5).
+                ids.poc = static_cast<int32_t>(*info.seed);
+                ids.idr_pic_id = 0;
+            }
+            FgcFrameResult fr = fgc->apply(src, dst, ids);
+            r.grain_applied = fr.grain_applied;
+            r.message = fr.message;
+            return r;
+        }
+        if (info.seed)
+            throw Error(ErrorCode::kUnsupported,
+                        "seed: the vfgs flavour never reseeds per picture (VersatileFilmGrain); set vfgs_seed at creation");
+        if (sei) {
+            // vfgs keeps the last parameter set in force (the reference has no persistence
+            // rules); a cancel or an invalid set stays in force until the next SEI.
+            vfgs_has_params = true;
+            vfgs_cancelled = sei->params.film_grain_characteristics_cancel_flag;
+            vfgs_invalid.clear();
+            try {
+                vfgs->set_params(sei->params);
+            } catch (const Error& e) {
+                if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
+                vfgs_invalid = e.what();
+            }
+        }
+        if (!vfgs_has_params) {
+            copy_frame(src, dst);
+            return r;
+        }
+        if (!vfgs_invalid.empty()) {
+            copy_frame(src, dst);
+            r.message = "film grain not applied: " + vfgs_invalid;
+            return r;
+        }
+        try {
+            vfgs->apply(src, dst);
+        } catch (const Error& e) {
+            if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
+            copy_frame(src, dst);
+            r.message = std::string("film grain not applied: ") + e.what();
+            return r;
+        }
+        r.grain_applied = !vfgs_cancelled;
+        if (vfgs_cancelled) r.message = "film grain cancelled (film_grain_characteristics_cancel_flag = 1)";
+        return r;
+    }
+
+    bool vfgs_has_params = false;
+    bool vfgs_cancelled = false;
+
+    ApplyResult apply_av1(const FrameView& src, const FrameView& dst, const FrameInfo& info) {
+        ApplyResult r;
+        Av1FilmGrainParams p = *av1;
+        if (info.seed) p.grain_seed = static_cast<int>(*info.seed & 0xFFFF);
+        try {
+            av1::apply_film_grain(p, src, dst, av1_matrix_coefficients);
+        } catch (const Error& e) {
+            if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
+            copy_frame(src, dst);
+            r.message = std::string("film grain not applied: ") + e.what();
+            return r;
+        }
+        r.grain_applied = p.apply_grain != 0 && (p.num_y_points > 0 || p.chroma_scaling_from_luma ||
+                                                 p.num_cb_points > 0 || p.num_cr_points > 0);
+        return r;
+    }
+};
+
+GrainContext::GrainContext(const ContextOptions& options) {
+    check_options(options);
+    impl_ = std::make_unique<Impl>(options);
+}
+GrainContext::~GrainContext() = default;
+GrainContext::GrainContext(GrainContext&&) noexcept = default;
+GrainContext& GrainContext::operator=(GrainContext&&) noexcept = default;
+
+const ContextOptions& GrainContext::options() const { return impl_->options; }
+
+void GrainContext::receive_fgc_params(const FgcParams& params, FgcCodec codec, std::optional<FgcPictureIds> picture) {
+    check_codec(codec);
+    impl_->pending.push({params, codec, picture});
+    impl_->model = Impl::Model::kFgc;
+}
+
+void GrainContext::receive_fgc_sei_payload(const uint8_t* payload, std::size_t size, FgcCodec codec,
+                                           std::optional<FgcPictureIds> picture) {
+    check_codec(codec);
+    if (!payload && size) throw Error(ErrorCode::kInvalidArgument, "payload is NULL with size " + std::to_string(size));
+    receive_fgc_params(parse_fgc_sei_payload(payload, size, codec), codec, picture);
+}
+
+void GrainContext::receive_av1_params(const Av1FilmGrainParams& params, unsigned refresh_frame_flags,
+                                      int matrix_coefficients) {
+    if (refresh_frame_flags > 0xFF)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("refresh_frame_flags", refresh_frame_flags, 0, 255));
+    if (matrix_coefficients < 0 || matrix_coefficients > 255)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("matrix_coefficients", matrix_coefficients, 0, 255));
+    const Av1FilmGrainParams resolved = impl_->slots.resolve(params);
+    impl_->slots.store(resolved, refresh_frame_flags);
+    impl_->av1 = resolved;
+    impl_->av1_matrix_coefficients = matrix_coefficients;
+    impl_->model = Impl::Model::kAv1;
+}
+
+void GrainContext::show_existing_av1_frame(int frame_to_show_map_idx) {
+    impl_->av1 = impl_->slots.at(frame_to_show_map_idx);
+    impl_->model = Impl::Model::kAv1;
+}
+
+void GrainContext::receive_afgs1_t35(const uint8_t*, std::size_t) {
+    throw Error(ErrorCode::kUnsupported,
+                "AFGS1 T.35 payloads: this build has no AFGS1 parser; convert the payload to AV1 film grain "
+                "parameters and use the AV1 entry point");
+}
+
+void GrainContext::receive_json(std::string_view text, FgcCodec codec, std::optional<FgcPictureIds> picture) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text.begin(), text.end());
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(ErrorCode::kMalformedPayload, std::string("JSON parameters: ") + e.what());
+    }
+    if (j.is_object() && (j.contains("frames") || j.contains("frames_info")))
+        throw Error(ErrorCode::kUnsupported,
+                    "JSON parameters: a per-frame file ('frames' list) is not one parameter set; push each "
+                    "frame's entry with its picture");
+    const ParamsFile f = parse_params_json(j);
+    const FrameParams& fp = f.frames.at(0);
+    if (fp.fgc) {
+        receive_fgc_params(*fp.fgc, codec, picture);
+        return;
+    }
+    const std::vector<Av1FrameParams> av1 = av1_frame_params_from_json(j);
+    const Av1FrameParams& a = av1.at(0);
+    receive_av1_params(a.grain, 0, a.color ? a.color->matrix_coefficients : 2);
+}
+
+void GrainContext::reset() {
+    Impl& s = *impl_;
+    s.pending.clear();
+    s.slots.clear();
+    s.av1.reset();
+    s.model = Impl::Model::kNone;
+    s.pictures_applied = 0;
+    s.vfgs_cancelled = false;
+    s.vfgs_has_params = false;
+    s.make_synthesizers();
+}
+
+ApplyResult GrainContext::apply(const FrameView& src, const FrameView& dst, const FrameInfo* info) {
+    Impl& s = *impl_;
+    FrameInfo fi;
+    if (info) fi = *info;
+    else fi.ids.poc = s.pictures_applied;
+    check_views(src, dst);
+    ApplyResult r;
+    switch (s.model) {
+    case Impl::Model::kNone: copy_frame(src, dst); break;
+    case Impl::Model::kFgc: r = s.apply_fgc(src, dst, fi); break;
+    case Impl::Model::kAv1: r = s.apply_av1(src, dst, fi); break;
+    }
+    s.pictures_applied++;
+    return r;
+}
+
+}  // namespace filmgrain

@@ -1,0 +1,569 @@
+/* Tests of the C API, in C, through the shared library: layouts (padded and negative
+ * strides), in place against out of place, odd sizes, every chroma format and bit depth,
+ * error codes with messages naming the field, SEI matching by picture ids, persistence,
+ * AV1 reference slots, and concurrent contexts. Run as `filmgrain_capi_tests NAME`. */
+#include <pthread.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "capi_test_support.h"
+
+static const char* const kModels[] = {"rdd5", "vtm", "vfgs", "av1"};
+
+/* Picture formats each model's reference handles (others are refused with a message):
+ * vtm follows HM (128..7680 x 128..4320, multiples of 4); vfgs its reference (width > 128,
+ * height >= 128, even where chroma is subsampled, 8 and 10 bit, no 4:0:0); AV1 8, 10 and 12 bit. */
+static int model_supports(const char* model, int w, int h, int bit_depth, int chroma_format) {
+    if (!strcmp(model, "vtm")) return w >= 128 && h >= 128 && w % 4 == 0 && h % 4 == 0;
+    if (!strcmp(model, "vfgs"))
+        return w > 128 && h >= 128 && bit_depth <= 10 && chroma_format != FG_CHROMA_400 &&
+               (chroma_format == FG_CHROMA_444 || w % 2 == 0) && (chroma_format != FG_CHROMA_420 || h % 2 == 0);
+    if (!strcmp(model, "av1")) return bit_depth <= 12;
+    return 1;
+}
+
+/* vfgs has chroma grain in 4:2:0 only, as its reference: other formats take luma-only SEIs. */
+static void push_luma_only(fg_context* ctx) {
+    const char* luma =
+        "{\"film_grain_model_id\": 0, \"log2_scale_factor\": 4, \"comp_model_present_flag\": [1, 0, 0],"
+        " \"num_intensity_intervals_minus1\": [0, 0, 0], \"num_model_values_minus1\": [2, 0, 0],"
+        " \"intensity_interval_lower_bound\": [[0], [], []], \"intensity_interval_upper_bound\": [[255], [], []],"
+        " \"comp_model_value\": [[[110, 9, 9]], [], []]}";
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, luma, strlen(luma), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+}
+
+/* Packed, padded and bottom-up buffers (src and dst in every combination) give the same
+ * samples; the padding bytes stay untouched. */
+static void test_strides(void) {
+    for (int m = 0; m < 4; m++) {
+        uint32_t reference = 0;
+        for (int ls = 0; ls < 3; ls++)
+            for (int ld = 0; ld < 3; ld++) {
+                fg_context* ctx = make_context(kModels[m], 0);
+                test_frame src, dst;
+                frame_alloc(&src, 256, 144, 10, FG_CHROMA_420, (layout)ls);
+                frame_alloc(&dst, 256, 144, 10, FG_CHROMA_420, (layout)ld);
+                frame_fill(&src, 1);
+                fg_frame_info info;
+                fg_frame_info_init(&info);
+                info.ids.poc = 3;
+                CHECK_STATUS(ctx, fg_context_apply(ctx, &src.frame, &dst.frame, &info), FG_OK, NULL);
+                CHECK(info.grain_applied == 1);
+                const uint32_t sum = frame_checksum(&dst.frame);
+                if (ls == 0 && ld == 0) reference = sum;
+                if (sum != reference) fprintf(stderr, "%s: layouts %d -> %d differ from packed\n", kModels[m], ls, ld);
+                CHECK(sum == reference);
+                if (ld == LAYOUT_PADDED) {
+                    /* the 64 bytes after each luma row are padding */
+                    const uint8_t* row_end = (const uint8_t*)dst.frame.planes[0] + 256 * 2;
+                    int untouched = 1;
+                    for (int y = 0; y < 144; y++)
+                        for (int i = 0; i < 64; i++) untouched &= row_end[dst.frame.strides[0] * y + i] == 0xA5;
+                    CHECK(untouched);
+                }
+                frame_free(&src);
+                frame_free(&dst);
+                fg_context_destroy(ctx);
+            }
+    }
+}
+
+/* Out of place leaves src untouched; in place (dst NULL, or dst == src) gives the same
+ * output. Three pictures in a row, so persistence and seeds per picture are covered. */
+static void test_in_place(void) {
+    for (int m = 0; m < 4; m++) {
+        fg_context* a = make_context(kModels[m], 0);
+        fg_context* b = make_context(kModels[m], 0);
+        for (int k = 0; k < 3; k++) {
+            test_frame src, orig, out, inplace;
+            frame_alloc(&src, 320, 180, 8, FG_CHROMA_420, LAYOUT_PACKED);
+            frame_alloc(&orig, 320, 180, 8, FG_CHROMA_420, LAYOUT_PACKED);
+            frame_alloc(&out, 320, 180, 8, FG_CHROMA_420, LAYOUT_PADDED);
+            frame_alloc(&inplace, 320, 180, 8, FG_CHROMA_420, LAYOUT_BOTTOM_UP);
+            frame_fill(&src, (uint32_t)k);
+            frame_fill(&orig, (uint32_t)k);
+            frame_fill(&inplace, (uint32_t)k);
+            CHECK_STATUS(a, fg_context_apply(a, &src.frame, &out.frame, NULL), FG_OK, NULL);
+            CHECK(frames_equal(&src.frame, &orig.frame));
+            CHECK(!frames_equal(&out.frame, &orig.frame));
+            CHECK_STATUS(b, fg_context_apply(b, &inplace.frame, k == 1 ? &inplace.frame : NULL, NULL), FG_OK, NULL);
+            CHECK(frames_equal(&out.frame, &inplace.frame));
+            frame_free(&src);
+            frame_free(&orig);
+            frame_free(&out);
+            frame_free(&inplace);
+        }
+        fg_context_destroy(a);
+        fg_context_destroy(b);
+    }
+}
+
+/* Odd luma sizes (chroma rounds up): grain is added, out of place equals in place, and
+ * a second context gives the same samples. vfgs refuses what its reference cannot do. */
+static void test_odd_sizes(void) {
+    const int sizes[][2] = {{97, 61}, {33, 17}, {1, 1}, {131, 129}};
+    const int formats[] = {FG_CHROMA_420, FG_CHROMA_422, FG_CHROMA_444};
+    for (int m = 0; m < 4; m++)
+        for (int s = 0; s < 4; s++)
+            for (int fi = 0; fi < 3; fi++) {
+                const int w = sizes[s][0], h = sizes[s][1];
+                fg_context* a = make_context(kModels[m], 0);
+                fg_context* b = make_context(kModels[m], 0);
+                test_frame src, out, inplace;
+                frame_alloc(&src, w, h, 8, formats[fi], LAYOUT_PADDED);
+                frame_alloc(&out, w, h, 8, formats[fi], LAYOUT_PACKED);
+                frame_alloc(&inplace, w, h, 8, formats[fi], LAYOUT_BOTTOM_UP);
+                frame_fill(&src, 7);
+                frame_copy(&src, &inplace);
+                if (!strcmp(kModels[m], "vfgs") && formats[fi] != FG_CHROMA_420) {
+                    push_luma_only(a);
+                    push_luma_only(b);
+                }
+                const fg_status st = fg_context_apply(a, &src.frame, &out.frame, NULL);
+                if (!model_supports(kModels[m], w, h, 8, formats[fi])) {
+                    CHECK_STATUS(a, st, FG_ERROR_UNSUPPORTED, NULL);
+                    CHECK(strlen(fg_last_error(a)) > 0);
+                } else {
+                    CHECK_STATUS(a, st, FG_OK, NULL);
+                    CHECK_STATUS(b, fg_context_apply(b, &inplace.frame, NULL, NULL), FG_OK, NULL);
+                    CHECK(frames_equal(&out.frame, &inplace.frame));
+                    if (w * h > 100) CHECK(plane_differences(&src.frame, &out.frame, 0) > 0);
+                }
+                frame_free(&src);
+                frame_free(&out);
+                frame_free(&inplace);
+                fg_context_destroy(a);
+                fg_context_destroy(b);
+            }
+}
+
+/* Every chroma format at every bit depth each model supports: grain in luma, in chroma
+ * where the format has it, samples within the bit depth. Unsupported combinations fail
+ * with a code and a message, never a crash. */
+static void test_formats(void) {
+    const int depths[] = {8, 10, 12, 16};
+    const int formats[] = {FG_CHROMA_400, FG_CHROMA_420, FG_CHROMA_422, FG_CHROMA_444};
+    for (int m = 0; m < 4; m++)
+        for (int d = 0; d < 4; d++)
+            for (int fi = 0; fi < 4; fi++) {
+                const char* model = kModels[m];
+                const int bd = depths[d], cf = formats[fi];
+                fg_context* ctx = make_context(model, 0);
+                test_frame src, out;
+                frame_alloc(&src, 256, 128, bd, cf, LAYOUT_PADDED);
+                frame_alloc(&out, 256, 128, bd, cf, LAYOUT_PADDED);
+                frame_fill(&src, (uint32_t)(d * 4 + fi));
+                fg_frame_info info;
+                fg_frame_info_init(&info);
+                const int av1 = !strcmp(model, "av1"), vfgs = !strcmp(model, "vfgs");
+                if (av1 && cf == FG_CHROMA_400) {
+                    /* a monochrome stream signals no chroma points */
+                    fg_av1_params p;
+                    av1_test_params(&p, 77);
+                    p.num_cb_points = p.num_cr_points = 0;
+                    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &p, 0), FG_OK, NULL);
+                }
+                if (vfgs && cf != FG_CHROMA_420) push_luma_only(ctx);
+                const fg_status st = fg_context_apply(ctx, &src.frame, &out.frame, &info);
+                if (!model_supports(model, 256, 128, bd, cf)) {
+                    CHECK(st != FG_OK);
+                    CHECK(strlen(fg_last_error(ctx)) > 0);
+                } else {
+                    if (st != FG_OK) fprintf(stderr, "%s %d-bit format %d: %s\n", model, bd, cf, fg_last_error(ctx));
+                    CHECK(st == FG_OK);
+                    CHECK(info.grain_applied == 1);
+                    CHECK(plane_differences(&src.frame, &out.frame, 0) > 0);
+                    /* vfgs adds chroma grain to 4:2:0 only (as its reference) */
+                    if (cf != FG_CHROMA_400 && (!vfgs || cf == FG_CHROMA_420)) {
+                        CHECK(plane_differences(&src.frame, &out.frame, 1) > 0);
+                        CHECK(plane_differences(&src.frame, &out.frame, 2) > 0);
+                    }
+                    int in_range = 1;
+                    for (int y = 0; y < 128; y++)
+                        for (int x = 0; x < 256; x++) in_range &= frame_sample(&out.frame, 0, x, y) < (1 << bd);
+                    CHECK(in_range);
+                }
+                frame_free(&src);
+                frame_free(&out);
+                fg_context_destroy(ctx);
+            }
+}
+
+static fg_status apply_simple(fg_context* ctx, test_frame* f) { return fg_context_apply(ctx, &f->frame, NULL, NULL); }
+
+/* Bad arguments and bad parameters: an error code, and a message naming the field. */
+static void test_errors(void) {
+    char msg[256];
+    fg_context* ctx = NULL;
+    fg_options o;
+
+    /* options */
+    fg_options_init(&o);
+    o.flavour = 7;
+    CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(ctx == NULL);
+    CHECK(strstr(msg, "flavour") && strstr(msg, "7"));
+    fg_options_init(&o);
+    o.threads = -1;
+    CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(msg, "threads") != NULL);
+    fg_options_init(&o);
+    o.persistence = 2;
+    CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(msg, "persistence") != NULL);
+    fg_options_init(&o);
+    o.struct_size = 4;
+    CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(msg, "struct_size") != NULL);
+    CHECK(fg_context_create(NULL, NULL, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
+    /* a message buffer too small is truncated, not overrun */
+    char tiny[8];
+    memset(tiny, 'x', sizeof tiny);
+    o.struct_size = 4;
+    CHECK(fg_context_create(&o, &ctx, tiny, 5) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strlen(tiny) == 4 && tiny[5] == 'x');
+    fg_options_init(&o);
+    o.threads = 0; /* all cores */
+    CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_OK);
+    fg_context_destroy(ctx);
+    fg_context_destroy(NULL);
+
+    /* NULL pointers */
+    test_frame f;
+    frame_alloc(&f, 64, 64, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_fill(&f, 1);
+    CHECK(fg_context_apply(NULL, &f.frame, NULL, NULL) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strlen(fg_last_error(NULL)) > 0);
+    CHECK(fg_context_push_json(NULL, kFgcJson, strlen(kFgcJson), FG_CODEC_HEVC, NULL) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(fg_context_reset(NULL) == FG_ERROR_INVALID_ARGUMENT);
+    ctx = make_context("rdd5", 0);
+    CHECK_STATUS(ctx, fg_context_apply(ctx, NULL, NULL, NULL), FG_ERROR_INVALID_ARGUMENT, "src is NULL");
+    CHECK_STATUS(ctx, fg_context_push_fgc_sei(ctx, NULL, 10, FG_CODEC_HEVC, NULL), FG_ERROR_INVALID_ARGUMENT, "payload");
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, NULL, 0), FG_ERROR_INVALID_ARGUMENT, "params");
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, NULL, 0, FG_CODEC_HEVC, NULL), FG_ERROR_INVALID_ARGUMENT, "json");
+    void* saved = f.frame.planes[1];
+    f.frame.planes[1] = NULL;
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_ARGUMENT, "src.planes[1]");
+    f.frame.planes[1] = saved;
+
+    /* frame description */
+    f.frame.strides[0] = 10;
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_ARGUMENT, "strides[0]");
+    f.frame.strides[0] = 64;
+    f.frame.bit_depth = 7;
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_ARGUMENT, "bit_depth");
+    f.frame.bit_depth = 8;
+    f.frame.chroma_format = 9;
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_ARGUMENT, "chroma_format");
+    f.frame.chroma_format = FG_CHROMA_420;
+    f.frame.width = 0;
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_ARGUMENT, "width");
+    f.frame.width = 64;
+    test_frame other;
+    frame_alloc(&other, 64, 32, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, &other.frame, NULL), FG_ERROR_INVALID_ARGUMENT, "dst");
+    frame_free(&other);
+    fg_frame_info info;
+    fg_frame_info_init(&info);
+    info.struct_size = 3;
+    CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, NULL, &info), FG_ERROR_INVALID_ARGUMENT, "struct_size");
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_OK, NULL);
+    CHECK(strcmp(fg_last_error(ctx), "") == 0);
+
+    /* metadata */
+    const char* bad_range = "{\"film_grain_model_id\": 0, \"log2_scale_factor\": 99}";
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, bad_range, strlen(bad_range), FG_CODEC_HEVC, NULL),
+                 FG_ERROR_INVALID_PARAMS, "log2_scale_factor");
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, "{\"film_grain", 12, FG_CODEC_HEVC, NULL), FG_ERROR_MALFORMED_PAYLOAD,
+                 "JSON");
+    const char* frames = "{\"frames\": [{\"poc\": 0}]}";
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, frames, strlen(frames), FG_CODEC_HEVC, NULL), FG_ERROR_UNSUPPORTED,
+                 "frames");
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, kFgcJson, strlen(kFgcJson), 5, NULL),
+                 FG_ERROR_INVALID_ARGUMENT, "codec");
+    const uint8_t truncated[1] = {0x00}; /* cancel_flag 0, then the payload ends */
+    CHECK_STATUS(ctx, fg_context_push_fgc_sei(ctx, truncated, sizeof truncated, FG_CODEC_HEVC, NULL),
+                 FG_ERROR_MALFORMED_PAYLOAD, NULL);
+    CHECK(strlen(fg_last_error(ctx)) > 0);
+    CHECK_STATUS(ctx, fg_context_push_afgs1_t35(ctx, truncated, sizeof truncated), FG_ERROR_UNSUPPORTED, "AFGS1");
+    CHECK_STATUS(ctx, fg_context_show_existing_av1_frame(ctx, 9), FG_ERROR_INVALID_ARGUMENT, "frame_to_show_map_idx");
+    CHECK_STATUS(ctx, fg_context_show_existing_av1_frame(ctx, 2), FG_ERROR_INVALID_PARAMS, "frame_to_show_map_idx");
+
+    /* An SEI valid in syntax but not for this picture: an interval bound above 255 is
+     * impossible in JSON (checked at push), so use comp_model_value beyond its range
+     * for the bit depth: the check runs at apply time, naming the element. */
+    const char* too_strong =
+        "{\"film_grain_model_id\": 0, \"log2_scale_factor\": 4, \"comp_model_present_flag\": [1, 0, 0],"
+        " \"num_intensity_intervals_minus1\": [0, 0, 0], \"num_model_values_minus1\": [0, 0, 0],"
+        " \"intensity_interval_lower_bound\": [[0], [], []], \"intensity_interval_upper_bound\": [[255], [], []],"
+        " \"comp_model_value\": [[[300]], [], []]}";
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, too_strong, strlen(too_strong), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_PARAMS, "comp_model_value");
+    fg_context_destroy(ctx);
+
+    /* passthrough: the same set leaves the picture untouched, with the reason */
+    ctx = make_context("rdd5", 1);
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, too_strong, strlen(too_strong), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+    test_frame orig;
+    frame_alloc(&orig, 64, 64, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_copy(&f, &orig);
+    fg_frame_info_init(&info);
+    CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, NULL, &info), FG_OK, "comp_model_value");
+    CHECK(info.grain_applied == 0);
+    CHECK(frames_equal(&f.frame, &orig.frame));
+    fg_context_destroy(ctx);
+
+    /* AV1 */
+    ctx = make_context("av1", 0);
+    fg_av1_params p;
+    av1_test_params(&p, 1);
+    p.num_y_points = 15;
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &p, 0), FG_OK, NULL);
+    CHECK_STATUS(ctx, apply_simple(ctx, &f), FG_ERROR_INVALID_PARAMS, "num_y_points");
+    av1_test_params(&p, 1);
+    p.update_grain = 0;
+    p.film_grain_params_ref_idx = 3;
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &p, 0), FG_ERROR_INVALID_PARAMS, "film_grain_params_ref_idx");
+    av1_test_params(&p, 1);
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &p, 0x100), FG_ERROR_INVALID_ARGUMENT, "refresh_frame_flags");
+    p.struct_size = 0;
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &p, 0), FG_ERROR_INVALID_ARGUMENT, "struct_size");
+    fg_context_destroy(ctx);
+
+    /* vfgs cannot reseed per picture */
+    ctx = make_context("vfgs", 0);
+    test_frame big;
+    frame_alloc(&big, 256, 128, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_fill(&big, 2);
+    fg_frame_info_init(&info);
+    info.has_seed = 1;
+    CHECK_STATUS(ctx, fg_context_apply(ctx, &big.frame, NULL, &info), FG_ERROR_UNSUPPORTED, "seed");
+    frame_free(&big);
+    fg_context_destroy(ctx);
+    frame_free(&orig);
+    frame_free(&f);
+}
+
+/* One picture through a fresh context with the given SEI handling; returns its checksum. */
+static uint32_t grain_checksum(fg_context* ctx, int poc, int idr_pic_id, int use_seed, uint32_t seed, int* applied) {
+    test_frame f;
+    frame_alloc(&f, 128, 128, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_fill(&f, 5);
+    fg_frame_info info;
+    fg_frame_info_init(&info);
+    info.ids.poc = poc;
+    info.ids.idr_pic_id = idr_pic_id;
+    info.has_seed = use_seed;
+    info.seed = seed;
+    CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, NULL, &info), FG_OK, NULL);
+    if (applied) *applied = info.grain_applied;
+    const uint32_t sum = frame_checksum(&f.frame);
+    frame_free(&f);
+    return sum;
+}
+
+/* SEIs pushed with picture ids wait for that picture (decode order != output order);
+ * the seed derivation follows the ids; persistence and cancel follow the options. */
+static void test_picture_ids_and_persistence(void) {
+    test_frame clean;
+    frame_alloc(&clean, 128, 128, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_fill(&clean, 5);
+    const uint32_t clean_sum = frame_checksum(&clean.frame);
+    frame_free(&clean);
+
+    /* decode order: picture POC 4 (with SEI) before POC 2; output order 2, 4 */
+    fg_context* reordered = make_context("rdd5", 0);
+    fg_context_reset(reordered);
+    fg_picture_ids ids4 = {4, 0};
+    CHECK_STATUS(reordered, fg_context_push_json(reordered, kFgcJson, strlen(kFgcJson), FG_CODEC_HEVC, &ids4), FG_OK,
+                 NULL);
+    int applied = -1;
+    CHECK(grain_checksum(reordered, 2, 0, 0, 0, &applied) == clean_sum);
+    CHECK(applied == 0);
+    const uint32_t poc4 = grain_checksum(reordered, 4, 0, 0, 0, &applied);
+    CHECK(applied == 1 && poc4 != clean_sum);
+    fg_context* direct = make_context("rdd5", 0);
+    CHECK(grain_checksum(direct, 4, 0, 0, 0, NULL) == poc4);
+    /* rdd5: the seed follows POC + (idr_pic_id << 5); an explicit seed gives the same */
+    const uint32_t idr = grain_checksum(direct, 3, 1, 0, 0, NULL);
+    CHECK(idr != poc4);
+    fg_context* seeded = make_context("rdd5", 0);
+    CHECK(grain_checksum(seeded, 99, 7, 1, 3 + (1 << 5), NULL) == idr);
+    fg_context_destroy(seeded);
+    fg_context_destroy(direct);
+    fg_context_destroy(reordered);
+
+    /* persistence_flag = 0: HM reuses it (reference), the semantics do not (semantic) */
+    char once[1024];
+    snprintf(once, sizeof once, "%.*s0}", (int)(strlen(kFgcJson) - 2), kFgcJson);
+    for (int semantic = 0; semantic < 2; semantic++) {
+        fg_options o;
+        fg_options_init(&o);
+        o.persistence = semantic ? FG_PERSISTENCE_SEMANTIC : FG_PERSISTENCE_REFERENCE;
+        fg_context* ctx = NULL;
+        CHECK(fg_context_create(&o, &ctx, NULL, 0) == FG_OK);
+        CHECK_STATUS(ctx, fg_context_push_json(ctx, once, strlen(once), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+        grain_checksum(ctx, 0, 0, 0, 0, &applied);
+        CHECK(applied == 1);
+        const uint32_t next = grain_checksum(ctx, 1, 0, 0, 0, &applied);
+        CHECK(applied == !semantic);
+        CHECK((next == clean_sum) == semantic);
+        fg_context_destroy(ctx);
+    }
+
+    /* cancel: no grain from that picture on */
+    fg_context* ctx = make_context("vtm", 0);
+    CHECK(grain_checksum(ctx, 0, 0, 0, 0, &applied) != clean_sum);
+    const char* cancel = "{\"film_grain_characteristics_cancel_flag\": 1}";
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, cancel, strlen(cancel), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+    CHECK(grain_checksum(ctx, 1, 0, 0, 0, &applied) == clean_sum && applied == 0);
+    CHECK(grain_checksum(ctx, 2, 0, 0, 0, &applied) == clean_sum && applied == 0);
+    fg_context_destroy(ctx);
+
+    /* reset: nothing in force, picture count restarts */
+    ctx = make_context("rdd5", 0);
+    CHECK(grain_checksum(ctx, 0, 0, 0, 0, NULL) != clean_sum);
+    CHECK_STATUS(ctx, fg_context_reset(ctx), FG_OK, NULL);
+    CHECK(grain_checksum(ctx, 1, 0, 0, 0, &applied) == clean_sum && applied == 0);
+    fg_context_destroy(ctx);
+
+    /* without info, pictures count 0, 1, 2: the third equals POC 2 */
+    fg_context* counted = make_context("vtm", 0);
+    fg_context* explicit_ids = make_context("vtm", 0);
+    test_frame f;
+    frame_alloc(&f, 128, 128, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    for (int k = 0; k < 3; k++) {
+        frame_fill(&f, 5);
+        CHECK_STATUS(counted, fg_context_apply(counted, &f.frame, NULL, NULL), FG_OK, NULL);
+    }
+    CHECK(frame_checksum(&f.frame) == grain_checksum(explicit_ids, 2, 0, 0, 0, NULL));
+    frame_free(&f);
+    fg_context_destroy(counted);
+    fg_context_destroy(explicit_ids);
+}
+
+/* AV1 reference slots: update_grain = 0 loads a stored set with the new seed;
+ * show_existing_frame shows a stored set as it was. */
+static void test_av1_reference_slots(void) {
+    fg_av1_params a, b, load;
+    av1_test_params(&a, 1000);
+    av1_test_params(&b, 2000);
+    b.num_y_points = 2; /* a different set */
+    fg_context* ctx = make_context("av1", 0);
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &a, 0x05), FG_OK, NULL); /* slots 0 and 2 */
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &b, 0x02), FG_OK, NULL); /* slot 1 */
+    fg_av1_params_init(&load);
+    load.apply_grain = 1;
+    load.update_grain = 0;
+    load.film_grain_params_ref_idx = 2;
+    load.grain_seed = 3000;
+    CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &load, 0), FG_OK, NULL);
+    const uint32_t loaded = grain_checksum(ctx, 0, 0, 0, 0, NULL);
+
+    fg_context* ref = make_context("av1", 0);
+    fg_av1_params a3000 = a;
+    a3000.grain_seed = 3000;
+    CHECK_STATUS(ref, fg_context_push_av1_params(ref, &a3000, 0), FG_OK, NULL);
+    CHECK(grain_checksum(ref, 0, 0, 0, 0, NULL) == loaded);
+    /* the per-frame seed replaces grain_seed */
+    CHECK_STATUS(ref, fg_context_push_av1_params(ref, &a, 0), FG_OK, NULL);
+    CHECK(grain_checksum(ref, 0, 0, 1, 3000, NULL) == loaded);
+
+    CHECK_STATUS(ctx, fg_context_show_existing_av1_frame(ctx, 1), FG_OK, NULL);
+    const uint32_t shown = grain_checksum(ctx, 0, 0, 0, 0, NULL);
+    CHECK_STATUS(ref, fg_context_push_av1_params(ref, &b, 0), FG_OK, NULL);
+    CHECK(grain_checksum(ref, 0, 0, 0, 0, NULL) == shown);
+    CHECK(shown != loaded);
+    fg_context_destroy(ref);
+    fg_context_destroy(ctx);
+}
+
+/* Contexts on several threads at once give what one thread gives. */
+enum { kThreads = 4, kFrames = 4 };
+typedef struct job {
+    const char* model;
+    uint32_t sums[kFrames];
+} job;
+
+static void run_job(job* j) {
+    fg_context* ctx = make_context(j->model, 0);
+    test_frame src, dst;
+    frame_alloc(&src, 320, 192, 10, FG_CHROMA_420, LAYOUT_PADDED);
+    frame_alloc(&dst, 320, 192, 10, FG_CHROMA_420, LAYOUT_BOTTOM_UP);
+    for (int k = 0; k < kFrames; k++) {
+        frame_fill(&src, (uint32_t)k);
+        fg_frame_info info;
+        fg_frame_info_init(&info);
+        info.ids.poc = 2 * k;
+        j->sums[k] = fg_context_apply(ctx, &src.frame, &dst.frame, &info) == FG_OK ? frame_checksum(&dst.frame) : 0;
+    }
+    frame_free(&src);
+    frame_free(&dst);
+    fg_context_destroy(ctx);
+}
+
+static void* job_thread(void* arg) {
+    run_job((job*)arg);
+    return NULL;
+}
+
+static void test_concurrency(void) {
+    job serial[kThreads];
+    for (int t = 0; t < kThreads; t++) {
+        serial[t].model = kModels[t % 4];
+        run_job(&serial[t]);
+    }
+    /* twice as many threads as models: two contexts of each model at once */
+    pthread_t threads[2 * kThreads];
+    job doubled[2 * kThreads];
+    for (int t = 0; t < 2 * kThreads; t++) {
+        doubled[t].model = kModels[t % 4];
+        CHECK(pthread_create(&threads[t], NULL, job_thread, &doubled[t]) == 0);
+    }
+    for (int t = 0; t < 2 * kThreads; t++) pthread_join(threads[t], NULL);
+    for (int t = 0; t < 2 * kThreads; t++)
+        for (int k = 0; k < kFrames; k++) {
+            CHECK(serial[t % kThreads].sums[k] != 0);
+            CHECK(doubled[t].sums[k] == serial[t % kThreads].sums[k]);
+        }
+}
+
+static void test_version(void) {
+    CHECK(fg_version() == FG_VERSION);
+    CHECK(strcmp(fg_version_string(), "1.0.0") == 0);
+    CHECK(strcmp(fg_status_name(FG_ERROR_INVALID_PARAMS), "FG_ERROR_INVALID_PARAMS") == 0);
+    CHECK(strcmp(fg_status_name(99), "unknown fg_status") == 0);
+}
+
+typedef struct named_test {
+    const char* name;
+    void (*run)(void);
+} named_test;
+
+static const named_test kTests[] = {
+    {"strides", test_strides},
+    {"in_place", test_in_place},
+    {"odd_sizes", test_odd_sizes},
+    {"formats", test_formats},
+    {"errors", test_errors},
+    {"picture_ids_and_persistence", test_picture_ids_and_persistence},
+    {"av1_reference_slots", test_av1_reference_slots},
+    {"concurrency", test_concurrency},
+    {"version", test_version},
+};
+
+int main(int argc, char** argv) {
+    int ran = 0;
+    for (size_t i = 0; i < sizeof kTests / sizeof kTests[0]; i++) {
+        if (argc > 1 && strcmp(argv[1], kTests[i].name) != 0) continue;
+        const int before = g_failures;
+        kTests[i].run();
+        printf("%s: %s\n", kTests[i].name, g_failures == before ? "ok" : "FAILED");
+        ran++;
+    }
+    if (!ran) {
+        fprintf(stderr, "no test named %s\n", argc > 1 ? argv[1] : "");
+        return 2;
+    }
+    return g_failures ? 1 : 0;
+}

@@ -1,0 +1,85 @@
+# Installs the build into a fresh prefix and builds examples/decoder_hook.c against the
+# installed package twice, once through CMake find_package (shared and static library)
+# and once through pkg-config, then runs every build: all must add grain and print the
+# same output. Run with: cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DC_COMPILER=... -P
+foreach(v BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "${v} is not set")
+  endif()
+endforeach()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+
+# The installed layout. The library directory is whatever GNUInstallDirs chose.
+file(GLOB_RECURSE pc_files ${prefix}/*/filmgrain.pc)
+list(LENGTH pc_files n)
+if(NOT n EQUAL 1)
+  message(FATAL_ERROR "expected one installed filmgrain.pc, found: ${pc_files}")
+endif()
+get_filename_component(pc_dir ${pc_files} DIRECTORY)
+get_filename_component(libdir ${pc_dir} DIRECTORY)
+foreach(f include/filmgrain/filmgrain.h include/filmgrain/filmgrain.hpp include/filmgrain/export.h
+          include/filmgrain/frame.hpp include/filmgrain/error.hpp bin/filmgrain)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "not installed: ${f}")
+  endif()
+endforeach()
+foreach(f libfilmgrain.so libfilmgrain.so.1 libfilmgrain.a cmake/filmgrain/filmgrainConfig.cmake
+          cmake/filmgrain/filmgrainConfigVersion.cmake cmake/filmgrain/filmgrainTargets.cmake)
+  if(NOT EXISTS ${libdir}/${f})
+    message(FATAL_ERROR "not installed: ${libdir}/${f}")
+  endif()
+endforeach()
+
+# 1. CMake find_package, both libraries.
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples -B ${WORK_DIR}/cmake-build -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_C_COMPILER=${C_COMPILER} -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/cmake-build)
+run(${WORK_DIR}/cmake-build/decoder_hook)
+set(out_cmake "${last_output}")
+run(${WORK_DIR}/cmake-build/decoder_hook_static)
+set(out_static "${last_output}")
+
+# 2. pkg-config, as a Makefile would do it.
+find_program(PKG_CONFIG pkg-config REQUIRED)
+set(ENV{PKG_CONFIG_PATH} ${pc_dir})
+run(${PKG_CONFIG} --cflags filmgrain)
+string(STRIP "${last_output}" cflags)
+run(${PKG_CONFIG} --libs filmgrain)
+string(STRIP "${last_output}" libs)
+separate_arguments(cflags UNIX_COMMAND "${cflags}")
+separate_arguments(libs UNIX_COMMAND "${libs}")
+run(${C_COMPILER} -std=c99 -Wall -Werror ${cflags} ${SOURCE_DIR}/examples/decoder_hook.c -o ${WORK_DIR}/decoder_hook_pc
+    ${libs})
+run(${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${libdir} ${WORK_DIR}/decoder_hook_pc)
+set(out_pc "${last_output}")
+
+message(STATUS "decoder_hook output:\n${out_cmake}")
+if(NOT out_cmake MATCHES "frame 2: grain applied")
+  message(FATAL_ERROR "unexpected output of the find_package build:\n${out_cmake}")
+endif()
+if(NOT out_cmake STREQUAL out_pc OR NOT out_cmake STREQUAL out_static)
+  message(FATAL_ERROR "builds differ:\nfind_package:\n${out_cmake}\nstatic:\n${out_static}\npkg-config:\n${out_pc}")
+endif()
+
+# The shared library exports the C API and the C++ facade only.
+find_program(NM nm)
+if(NM)
+  run(${NM} -D --defined-only ${libdir}/libfilmgrain.so)
+  string(REGEX MATCHALL "[^\n]+" lines "${last_output}")
+  foreach(l ${lines})
+    if(NOT l MATCHES " (fg_|_ZNK?9filmgrain|_ZT[ISV]N9filmgrain|FILMGRAIN_1)")
+      message(FATAL_ERROR "libfilmgrain.so exports a symbol outside the API: ${l}")
+    endif()
+  endforeach()
+endif()
