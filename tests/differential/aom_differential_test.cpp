@@ -225,8 +225,8 @@ TEST_P(AomDifferential, AomdecMatchesOurSynthesis) {
 
     std::string log;
     const std::string ivf = (dir / "grain.ivf").string(), yuv = (dir / "aomdec.yuv").string();
-    ASSERT_EQ(filmgrain::testing::run_command(encode_command(f, tbl, (dir / "clean.y4m").string(), ivf, kFrames), &log), 0) << log;
-    ASSERT_EQ(filmgrain::testing::run_command("aomdec --rawvideo -o " + yuv + " " + ivf, &log), 0) << log;
+    ASSERT_EQ(filmgrain::test_support::run_command(encode_command(f, tbl, (dir / "clean.y4m").string(), ivf, kFrames), &log), 0) << log;
+    ASSERT_EQ(filmgrain::test_support::run_command("aomdec --rawvideo -o " + yuv + " " + ivf, &log), 0) << log;
     const std::vector<uint8_t> decoded = read_whole_file(yuv);
     // aomdec writes every plane of the coded format (monochrome: its own layout; luma first).
     const std::size_t frame_bytes = decoded.size() / kFrames;
@@ -251,14 +251,14 @@ TEST_P(AomDifferential, AomdecMatchesOurSynthesis) {
         std::ofstream(json) << av1_frame_params_to_json({fp}).dump();
         const std::string tool = FILMGRAIN_TOOL_PATH;
         const std::string tool_tbl = (dir / "tool.tbl").string();
-        ASSERT_EQ(filmgrain::testing::run_command(tool + " params convert " + json + " -o " + tool_tbl, &log), 0) << log;
+        ASSERT_EQ(filmgrain::test_support::run_command(tool + " params convert " + json + " -o " + tool_tbl, &log), 0) << log;
         write_y4m((dir / "one.y4m").string(), clip, 1);
         const std::string ivf1 = (dir / "tool.ivf").string(), yuv1 = (dir / "tool_aomdec.yuv").string();
-        ASSERT_EQ(filmgrain::testing::run_command(encode_command(f, tool_tbl, (dir / "one.y4m").string(), ivf1, 1), &log), 0)
+        ASSERT_EQ(filmgrain::test_support::run_command(encode_command(f, tool_tbl, (dir / "one.y4m").string(), ivf1, 1), &log), 0)
             << "aomenc rejected our table: " << log;
-        ASSERT_EQ(filmgrain::testing::run_command("aomdec --rawvideo -o " + yuv1 + " " + ivf1, &log), 0) << log;
+        ASSERT_EQ(filmgrain::test_support::run_command("aomdec --rawvideo -o " + yuv1 + " " + ivf1, &log), 0) << log;
         const std::string ours = (dir / "tool_ours.yuv").string();
-        ASSERT_EQ(filmgrain::testing::run_command(tool + " apply -q --params " + tool_tbl + " -i " + (dir / "one.y4m").string() +
+        ASSERT_EQ(filmgrain::test_support::run_command(tool + " apply -q --params " + tool_tbl + " -i " + (dir / "one.y4m").string() +
                                            " -o " + ours,
                                        &log),
                   0)
