@@ -27,6 +27,7 @@ void register_stats(CLI::App& app);
 void register_tradeoff(CLI::App& app);
 void register_analyze(CLI::App& app);
 void register_preset(CLI::App& app);
+void register_params(CLI::App& app);
 void register_demo(CLI::App& app, bool* ran_default);
 int run_demo();
 

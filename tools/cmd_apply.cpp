@@ -10,7 +10,9 @@
 #include "frame_pipeline.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "filmgrain/vfgs.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/aom_grain_table.hpp"
+#include "payload_files.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "filmgrain/error.hpp"
 #include "io/xz_file.hpp"
@@ -23,6 +25,7 @@ namespace {
 struct ApplyOptions {
     std::string input, output, params;
     std::vector<std::string> sei;
+    std::vector<std::string> afgs1;
     std::string sei_codec = "hevc";
     std::string flavour = "rdd5";
     std::string on_invalid = "error";
@@ -176,6 +179,47 @@ int run_av1(const ApplyOptions& o) {
         "AV1 film grain");
 }
 
+// AFGS1 T.35 payloads: the stored sets persist across pictures; each picture's
+// payload selects the set for the picture's size, format and bit depth. A picture
+// without a payload gets no grain (the metadata applies to its own picture).
+int run_afgs1(const ApplyOptions& o) {
+    const PayloadFiles files(o.afgs1);
+    Afgs1Reader reader;
+    return process_video(
+        o, {}, false,
+        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
+            auto report = [&](const std::string& why) {
+                if (!o.quiet) std::fprintf(stderr, "filmgrain: frame %d: no grain (%s)\n", k, why.c_str());
+                av1::apply_film_grain(Av1FilmGrainParams{}, in.view(), out.view(), 2);  // copies
+            };
+            const auto bytes = files.for_picture(k);
+            if (!bytes) return report("no AFGS1 payload");
+            Afgs1Payload payload;
+            try {
+                payload = reader.receive(*bytes, afgs1_has_t35_header(bytes->data(), bytes->size()));
+            } catch (const Error& e) {
+                throw Error(e.code(), "'" + files.name_for(k) + "': " + e.what());
+            }
+            Afgs1Picture pic;
+            pic.width = info.width;
+            pic.height = info.height;
+            pic.format = info.format.chroma;
+            pic.bit_depth = info.format.bit_depth;
+            pic.matrix_coefficients = o.matrix_coefficients;
+            const auto sel = select_afgs1_set(payload, pic);
+            if (!sel)
+                return report(payload.afgs1_enable_flag ? "no parameter set of the payload fits a " +
+                                                              std::to_string(info.width) + "x" +
+                                                              std::to_string(info.height) + " " +
+                                                              pix_fmt_name(info.format) + " picture"
+                                                        : "afgs1_enable_flag = 0");
+            Av1FilmGrainParams p = sel->params;
+            if (o.clip_to_restricted_range >= 0) p.clip_to_restricted_range = o.clip_to_restricted_range;
+            av1::apply_film_grain(p, in.view(), out.view(), sel->matrix_coefficients);
+        },
+        "AFGS1 film grain");
+}
+
 int run_vfgs(const ApplyOptions& o, std::unique_ptr<FgcSource> source) {
     vfgs::Options vo;
     vo.seed = o.seed;
@@ -214,8 +258,9 @@ int run_apply(const ApplyOptions& o) {
     if (o.persistence != "reference" && o.persistence != "semantic")
         throw Error(ErrorCode::kInvalidArgument,
                     "--persistence '" + o.persistence + "' is not known (allowed reference, semantic)");
-    if (o.params.empty() == o.sei.empty())
-        throw Error(ErrorCode::kInvalidArgument, "give exactly one of --params FILE or --sei FILE");
+    if (int(!o.params.empty()) + int(!o.sei.empty()) + int(!o.afgs1.empty()) != 1)
+        throw Error(ErrorCode::kInvalidArgument, "give exactly one of --params FILE, --sei FILE or --afgs1 FILE");
+    if (!o.afgs1.empty()) return run_afgs1(o);
     const FgcCodec codec = parse_fgc_codec(o.sei_codec);
 
     std::unique_ptr<FgcSource> source;
@@ -271,6 +316,9 @@ void register_apply(CLI::App& app) {
     sub->add_option("--sei", o->sei,
                     "raw FGC SEI payload(s) (payloadType 19 body); one file for every picture, several for "
                     "pictures 0,1,..., or a printf pattern such as frame%d.fgc.bin (missing = no SEI)");
+    sub->add_option("--afgs1", o->afgs1,
+                    "AFGS1 ITU-T T.35 payload(s) (with or without the B5 5890 01 header); one file for every "
+                    "picture, several for pictures 0,1,..., or a printf pattern (missing = no grain)");
     sub->add_option("--sei-codec", o->sei_codec, "SEI syntax variant: avc, hevc or vvc")->capture_default_str();
     sub->add_option("--flavour", o->flavour,
                     "rdd5 (SMPTE RDD 5 / FFmpeg), vtm (HM/VTM reference), vfgs (VersatileFilmGrain) or tr (rdd5 "

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
     filmgrain::cli::register_tradeoff(app);
     filmgrain::cli::register_analyze(app);
     filmgrain::cli::register_preset(app);
+    filmgrain::cli::register_params(app);
     filmgrain::cli::register_demo(app, &ran_default);
     try {
         app.parse(argc, argv);

@@ -43,6 +43,7 @@ public:
     void byte_align_with_stop_bit();
     void byte_align_zero();
     bool byte_aligned() const { return bits_ == 0; }
+    std::size_t bit_count() const { return out_.size() * 8 - (bits_ ? std::size_t(8 - bits_) : 0); }
     const std::vector<uint8_t>& bytes() const { return out_; }
 
 private:
