@@ -11,7 +11,7 @@
 
 using namespace filmgrain;
 using namespace filmgrain::bitstream;
-using namespace filmgrain::testing;
+using namespace filmgrain::test_support;
 namespace fs = std::filesystem;
 
 namespace {

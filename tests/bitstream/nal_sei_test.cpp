@@ -49,7 +49,7 @@ TEST(AnnexB, SplitsStartCodesOfThreeAndFourBytesAndWarnsAboutGarbage) {
 TEST(Sei, SeveralPayloadsPerNalWithLongTypesAndSizesRoundTrip) {
     std::vector<SeiMessage> msgs(3);
     msgs[0].payload_type = kSeiPayloadFgc;
-    msgs[0].payload = write_fgc_sei_payload(filmgrain::testing::fgc_params_for(3), FgcCodec::kHevc);
+    msgs[0].payload = write_fgc_sei_payload(filmgrain::test_support::fgc_params_for(3), FgcCodec::kHevc);
     msgs[1].payload_type = kSeiPayloadT35;
     msgs[1].payload = {0xB5, 0x58, 0x90, 0x01, 0, 0, 1, 0, 0, 0};
     msgs[2].payload_type = 300;  // coded as 0xFF 0x2D

@@ -10,7 +10,7 @@
 #include "core/frame_buffer.hpp"
 #include "io/video_file.hpp"
 
-namespace filmgrain::testing {
+namespace filmgrain::test_support {
 
 namespace fs = std::filesystem;
 
@@ -93,4 +93,4 @@ FgcParams fgc_params_for(int k) {
     return p;
 }
 
-}  // namespace filmgrain::testing
+}  // namespace filmgrain::test_support

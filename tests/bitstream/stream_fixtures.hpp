@@ -9,7 +9,7 @@
 
 #include "filmgrain/fgc_params.hpp"
 
-namespace filmgrain::testing {
+namespace filmgrain::test_support {
 
 std::filesystem::path fresh_test_dir(const std::string& name);  // removed and recreated
 std::vector<uint8_t> read_bytes(const std::filesystem::path& p);
@@ -25,4 +25,4 @@ bool run_or_fail(const std::string& cmd);
 // each access unit's payload is recognisable.
 FgcParams fgc_params_for(int k);
 
-}  // namespace filmgrain::testing
+}  // namespace filmgrain::test_support
