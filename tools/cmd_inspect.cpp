@@ -91,8 +91,13 @@ void register_inspect(CLI::App& app) {
     });
 
     auto e = std::make_shared<InspectOptions>();
-    CLI::App* params = app.add_subcommand("params", "parameter files");
-    params->require_subcommand(1);
+    // `params` also holds `convert` (cmd_params.cpp): join it when it is there
+    CLI::App* params = nullptr;
+    for (CLI::App* sub_app : app.get_subcommands([](CLI::App* a) { return a->get_name() == "params"; })) params = sub_app;
+    if (!params) {
+        params = app.add_subcommand("params", "parameter files");
+        params->require_subcommand(1);
+    }
     CLI::App* extract = params->add_subcommand(
         "extract", "write the per-frame parameter file (output order, POC, FGC SEI) that `apply --params` reads");
     add_stream_options(extract, e.get());
