@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
     filmgrain::cli::register_preset(app);
     filmgrain::cli::register_params(app);
     filmgrain::cli::register_demo(app, &ran_default);
+    filmgrain::cli::register_inspect(app);
+    filmgrain::cli::register_decode(app);
     try {
         app.parse(argc, argv);
         if (app.get_subcommands().empty()) return filmgrain::cli::run_demo();

@@ -1,0 +1,141 @@
+#include "bitstream/stream_report.hpp"
+
+#include <cstdio>
+
+#include "filmgrain/error.hpp"
+#include "metadata/fgc_json.hpp"
+
+namespace filmgrain::bitstream {
+namespace {
+
+using nlohmann::json;
+
+std::string hex(const std::vector<uint8_t>& b, std::size_t max_bytes) {
+    std::string s;
+    char buf[4];
+    for (std::size_t i = 0; i < b.size() && i < max_bytes; i++) {
+        std::snprintf(buf, sizeof buf, "%02x", b[i]);
+        s += buf;
+    }
+    if (b.size() > max_bytes) s += "...";
+    return s;
+}
+
+json t35_to_json(const FoundT35& t) {
+    json j{{"suffix", t.suffix}, {"country_code", t.t35.country_code}, {"size", t.t35.bytes.size()}};
+    if (t.t35.country_code_extension >= 0) j["country_code_extension"] = t.t35.country_code_extension;
+    if (t.t35.provider_code >= 0) j["provider_code"] = t.t35.provider_code;
+    if (t.t35.provider_oriented_code >= 0) j["provider_oriented_code"] = t.t35.provider_oriented_code;
+    j["afgs1"] = is_afgs1_t35(t.t35);
+    j["hex"] = hex(t.t35.bytes, 4096);
+    return j;
+}
+
+std::string fgc_summary(const FgcParams& p) {
+    if (p.film_grain_characteristics_cancel_flag) return "cancel";
+    std::string s = "model " + std::to_string(p.film_grain_model_id) + ", blending " +
+                    std::to_string(p.blending_mode_id) + ", log2_scale_factor " + std::to_string(p.log2_scale_factor);
+    static const char* const comp[] = {"Y", "Cb", "Cr"};
+    for (int c = 0; c < 3; c++)
+        if (p.comp[c].comp_model_present_flag)
+            s += ", " + std::string(comp[c]) + ": " + std::to_string(p.comp[c].intervals.size()) + " interval(s)";
+    s += ", persistence " + std::to_string(int(p.film_grain_characteristics_persistence_flag));
+    return s;
+}
+
+}  // namespace
+
+json stream_scan_to_json(const StreamScan& scan) {
+    json units = json::array();
+    for (const AccessUnit& u : scan.units) {
+        json j{{"index", u.index}, {"offset", u.offset}, {"nal_units", u.nal_units}, {"pictures", u.pictures}};
+        if (!u.picture_type.empty()) j["picture_type"] = u.picture_type;
+        if (u.poc) j["poc"] = *u.poc;
+        if (u.idr_pic_id) j["idr_pic_id"] = *u.idr_pic_id;
+        if (scan.codec != StreamCodec::kAv1) j["sequence"] = u.sequence;
+        j["output"] = u.output;
+        if (u.pts) j["pts"] = *u.pts;
+        json fgc = json::array();
+        for (const FoundFgc& f : u.fgc) {
+            json e{{"suffix", f.suffix}, {"size", f.payload.size()}};
+            if (f.params)
+                e["params"] = fgc_params_to_json(*f.params);
+            else
+                e["error"] = f.error;
+            fgc.push_back(e);
+        }
+        j["fgc"] = fgc;
+        json t35 = json::array();
+        for (const FoundT35& t : u.t35) t35.push_back(t35_to_json(t));
+        j["t35"] = t35;
+        j["warnings"] = u.warnings;
+        units.push_back(j);
+    }
+    return json{{"codec", stream_codec_name(scan.codec)},
+                {"container", scan.container},
+                {"poc_support", scan.poc_support},
+                {"warnings", scan.warnings},
+                {"access_units", units}};
+}
+
+std::string stream_scan_to_text(const StreamScan& scan) {
+    std::string s = std::string(stream_codec_name(scan.codec)) + " (" + scan.container + "), " +
+                    std::to_string(scan.units.size()) + (scan.codec == StreamCodec::kAv1 ? " temporal" : " access") +
+                    " unit(s); POC: " + scan.poc_support + "\n";
+    for (const std::string& w : scan.warnings) s += "warning: " + w + "\n";
+    int fgc = 0, t35 = 0;
+    for (const AccessUnit& u : scan.units) {
+        s += (scan.codec == StreamCodec::kAv1 ? "TU " : "AU ") + std::to_string(u.index) + " @" + std::to_string(u.offset);
+        if (!u.picture_type.empty()) s += " " + u.picture_type;
+        if (u.poc) s += " poc=" + std::to_string(*u.poc);
+        if (u.idr_pic_id) s += " idr_pic_id=" + std::to_string(*u.idr_pic_id);
+        if (u.pts) s += " pts=" + std::to_string(*u.pts);
+        if (!u.output) s += " (not output)";
+        s += "\n";
+        for (const FoundFgc& f : u.fgc) {
+            fgc++;
+            s += std::string("  FGC SEI (") + (f.suffix ? "suffix" : "prefix") + ", " + std::to_string(f.payload.size()) +
+                 " bytes): " + (f.params ? fgc_summary(*f.params) : "unparsable: " + f.error) + "\n";
+        }
+        for (const FoundT35& t : u.t35) {
+            t35++;
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "  ITU-T T.35 (country 0x%02X, provider 0x%04X, %zu bytes)%s\n",
+                          t.t35.country_code, t.t35.provider_code < 0 ? 0 : t.t35.provider_code, t.t35.bytes.size(),
+                          is_afgs1_t35(t.t35) ? " AFGS1" : "");
+            s += buf;
+        }
+        for (const std::string& w : u.warnings) s += "  warning: " + w + "\n";
+    }
+    s += std::to_string(fgc) + " FGC SEI message(s), " + std::to_string(t35) + " T.35 payload(s), " +
+         std::to_string(scan.bad_units()) + " damaged unit(s)\n";
+    return s;
+}
+
+ParamsFile params_file_from_scan(const StreamScan& scan, std::vector<std::string>& warnings) {
+    if (scan.codec == StreamCodec::kAv1)
+        throw Error(ErrorCode::kUnsupported,
+                    "AV1 streams: film grain parameters come from frame headers or AFGS1 T.35 payloads, which "
+                    "`params extract` does not convert yet (use `filmgrain decode`, or `inspect` for the raw payloads)");
+    ParamsFile f;
+    f.per_frame = true;
+    for (const AccessUnit* u : units_in_output_order(scan)) {
+        FrameParams fp;
+        fp.poc = u->poc;
+        if (scan.codec == StreamCodec::kH264) fp.idr_pic_id = u->idr_pic_id;
+        for (const FoundFgc& g : u->fgc) {
+            if (!g.params) {
+                warnings.push_back("AU " + std::to_string(u->index) + ": FGC SEI skipped: " + g.error);
+            } else if (!fp.fgc) {
+                fp.fgc = g.params;
+            } else {
+                warnings.push_back("AU " + std::to_string(u->index) + ": more than one FGC SEI; the first is used");
+            }
+        }
+        f.frames.push_back(std::move(fp));
+    }
+    if (f.frames.empty()) throw Error(ErrorCode::kMalformedPayload, "the stream holds no decodable picture");
+    return f;
+}
+
+}  // namespace filmgrain::bitstream

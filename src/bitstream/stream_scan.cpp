@@ -1,0 +1,278 @@
+#include "bitstream/stream_scan.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <iterator>
+
+#include "bitstream/h264_poc.hpp"
+#include "bitstream/h265_poc.hpp"
+#include "bitstream/nal_header.hpp"
+#include "bitstream/nal_units.hpp"
+#include "filmgrain/error.hpp"
+#include "metadata/fgc_sei.hpp"
+
+namespace filmgrain::bitstream {
+namespace {
+
+NalCodec nal_codec(StreamCodec c) {
+    return c == StreamCodec::kH264 ? NalCodec::kH264 : c == StreamCodec::kH265 ? NalCodec::kH265 : NalCodec::kH266;
+}
+FgcCodec fgc_codec(StreamCodec c) {
+    return c == StreamCodec::kH264 ? FgcCodec::kAvc : c == StreamCodec::kH265 ? FgcCodec::kHevc : FgcCodec::kVvc;
+}
+
+void collect_sei(const std::vector<uint8_t>& rbsp, int header_bytes, bool suffix, StreamCodec codec, AccessUnit& au) {
+    const std::vector<uint8_t> body(rbsp.begin() + header_bytes, rbsp.end());
+    SeiParse sei = parse_sei_rbsp(body);
+    for (auto& w : sei.warnings) au.warnings.push_back(w);
+    for (SeiMessage& m : sei.messages) {
+        if (m.payload_type == kSeiPayloadFgc) {
+            FoundFgc f;
+            f.suffix = suffix;
+            f.payload = std::move(m.payload);
+            try {
+                f.params = parse_fgc_sei_payload(f.payload, fgc_codec(codec));
+            } catch (const Error& e) {
+                f.error = e.what();
+                au.warnings.push_back(std::string("FGC SEI: ") + e.what());
+            }
+            au.fgc.push_back(std::move(f));
+        } else if (m.payload_type == kSeiPayloadT35) {
+            FoundT35 t;
+            t.suffix = suffix;
+            if (parse_t35_payload(m.payload.data(), m.payload.size(), t.t35))
+                au.t35.push_back(std::move(t));
+            else
+                au.warnings.push_back("empty ITU-T T.35 SEI payload");
+        }
+    }
+}
+
+StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec codec) {
+    StreamScan scan;
+    scan.codec = codec;
+    scan.container = "annexb";
+    const NalCodec nc = nal_codec(codec);
+    switch (codec) {
+    case StreamCodec::kH264:
+        scan.poc_support = "H.264 8.2.1: pic_order_cnt_type 0, 1, 2 for frame pictures; IDR resets; MMCO 5 and field pictures not followed";
+        break;
+    case StreamCodec::kH265:
+        scan.poc_support = "H.265 8.3.1 from SPS/PPS/first slice segment; IRAP NoRaslOutputFlag (IDR, BLA, CRA first or after EOS)";
+        break;
+    default:
+        scan.poc_support = "H.266: not derived; pictures are listed in decode order";
+        break;
+    }
+    AnnexBSplit split = split_annexb(data, size);
+    scan.warnings = split.warnings;
+    H264PocDecoder h264;
+    H265PocDecoder h265;
+    int sequence = -1;
+    AccessUnit cur;
+    bool cur_has_vcl = false, cur_open = false;
+    auto finish = [&] {
+        if (cur_open) scan.units.push_back(std::move(cur));
+        cur = AccessUnit{};
+        cur.index = int(scan.units.size());
+        cur_has_vcl = false;
+        cur_open = false;
+    };
+    auto open_at = [&](std::size_t offset) {
+        if (!cur_open) {
+            cur.offset = offset - 3;  // the start code
+            cur.index = int(scan.units.size());
+            cur_open = true;
+        }
+    };
+
+    for (const NalSpan& span : split.nals) {
+        const uint8_t* nal = data + span.offset;
+        NalHeader h;
+        if (!parse_nal_header(nc, nal, span.size, h)) {
+            open_at(span.offset);
+            cur.warnings.push_back("NAL unit at byte " + std::to_string(span.offset) + " shorter than its header");
+            continue;
+        }
+        const std::vector<uint8_t> rbsp = remove_emulation_prevention(nal, span.size);
+        const bool vcl = is_vcl(nc, h.type);
+        const bool new_picture = vcl && vcl_starts_picture(nc, rbsp.data(), rbsp.size());
+        if (cur_has_vcl && (starts_access_unit(nc, h.type) || new_picture)) finish();
+        open_at(span.offset);
+        cur.nal_units++;
+        if (h.forbidden_bit) {
+            cur.warnings.push_back("NAL unit at byte " + std::to_string(span.offset) + " has forbidden_zero_bit=1; skipped");
+            continue;
+        }
+        if (h.layer_id != 0) continue;  // base layer only
+        try {
+            if (is_sps(nc, h.type)) {
+                if (codec == StreamCodec::kH264) h264.parse_sps(rbsp);
+                if (codec == StreamCodec::kH265) h265.parse_sps(rbsp);
+            } else if (is_pps(nc, h.type)) {
+                if (codec == StreamCodec::kH264) h264.parse_pps(rbsp);
+                if (codec == StreamCodec::kH265) h265.parse_pps(rbsp);
+            } else if (is_prefix_sei(nc, h.type) || is_suffix_sei(nc, h.type)) {
+                collect_sei(rbsp, h.header_bytes, is_suffix_sei(nc, h.type), codec, cur);
+            } else if (is_end_of_sequence(nc, h.type)) {
+                if (codec == StreamCodec::kH265) h265.end_of_sequence();
+            } else if (vcl) {
+                cur_has_vcl = true;
+                if (!new_picture) continue;
+                cur.pictures++;
+                cur.picture_type = nal_type_name(nc, h.type);
+                if (codec == StreamCodec::kH264) {
+                    const H264PictureOrder o = h264.picture(rbsp);
+                    if (o.idr) sequence++;
+                    cur.poc = o.poc;
+                    cur.idr_pic_id = o.idr_pic_id;
+                    if (!o.poc) cur.warnings.push_back("field picture: POC not derived");
+                } else if (codec == StreamCodec::kH265) {
+                    const H265PictureOrder o = h265.picture(rbsp);
+                    if (o.starts_sequence) sequence++;
+                    cur.poc = o.poc;
+                    cur.output = o.output;
+                } else if (h.type >= 7 && h.type <= 8) {
+                    sequence++;
+                }
+                cur.sequence = std::max(sequence, 0);
+            }
+        } catch (const Error& e) {
+            cur.warnings.push_back(nal_type_name(nc, h.type) + " NAL unit at byte " + std::to_string(span.offset) + ": " +
+                                   e.what());
+        }
+    }
+    finish();
+    return scan;
+}
+
+StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
+    StreamScan scan;
+    scan.codec = StreamCodec::kAv1;
+    scan.poc_support = "AV1: temporal units in decode order (one shown frame each)";
+    Av1Container container = Av1Container::kLowOverhead;
+    if (looks_like_ivf(data, size))
+        container = Av1Container::kIvf;
+    else if (!looks_like_av1_low_overhead(data, size) && looks_like_av1_annexb(data, size))
+        container = Av1Container::kAnnexB;
+    scan.container = container == Av1Container::kAnnexB ? "annexb-av1" : av1_container_name(container);
+    Av1Stream s = parse_av1_stream(data, size, container);
+    scan.warnings = s.warnings;
+    for (Av1TemporalUnit& tu : s.units) {
+        AccessUnit au;
+        au.index = int(scan.units.size());
+        au.offset = tu.offset;
+        au.pts = tu.pts;
+        au.warnings = tu.warnings;
+        au.nal_units = int(tu.obus.size());
+        for (const Av1Obu& obu : tu.obus) {
+            if (obu.type == kObuFrame || obu.type == kObuFrameHeader) au.pictures++;
+            std::vector<uint8_t> t35;
+            std::string warning;
+            if (av1_metadata_t35(obu, t35, &warning)) {
+                FoundT35 t;
+                if (parse_t35_payload(t35.data(), t35.size(), t.t35))
+                    au.t35.push_back(std::move(t));
+                else
+                    au.warnings.push_back("empty ITU-T T.35 metadata OBU at byte " + std::to_string(obu.offset));
+            } else if (!warning.empty()) {
+                au.warnings.push_back(warning);
+            }
+        }
+        scan.units.push_back(std::move(au));
+    }
+    return scan;
+}
+
+std::string lower_extension(const std::string& path) {
+    const auto dot = path.rfind('.');
+    if (dot == std::string::npos) return "";
+    std::string e = path.substr(dot + 1);
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+
+}  // namespace
+
+const char* stream_codec_name(StreamCodec c) {
+    switch (c) {
+    case StreamCodec::kH264: return "h264";
+    case StreamCodec::kH265: return "h265";
+    case StreamCodec::kH266: return "h266";
+    case StreamCodec::kAv1: return "av1";
+    }
+    return "?";
+}
+
+StreamCodec parse_stream_codec(const std::string& n) {
+    if (n == "h264" || n == "avc") return StreamCodec::kH264;
+    if (n == "h265" || n == "hevc") return StreamCodec::kH265;
+    if (n == "h266" || n == "vvc") return StreamCodec::kH266;
+    if (n == "av1") return StreamCodec::kAv1;
+    throw Error(ErrorCode::kInvalidArgument, "--codec '" + n + "' is not known (allowed h264, h265, h266, av1)");
+}
+
+std::optional<StreamCodec> detect_stream_codec(const uint8_t* data, std::size_t size, const std::string& path) {
+    if (looks_like_ivf(data, size) || looks_like_av1_low_overhead(data, size)) return StreamCodec::kAv1;
+    const std::string ext = lower_extension(path);
+    if (ext == "264" || ext == "h264" || ext == "avc" || ext == "jsv" || ext == "26l") return StreamCodec::kH264;
+    if (ext == "265" || ext == "h265" || ext == "hevc" || ext == "bit" || ext == "bin") {
+        if (ext == "265" || ext == "h265" || ext == "hevc") return StreamCodec::kH265;
+    }
+    if (ext == "266" || ext == "h266" || ext == "vvc") return StreamCodec::kH266;
+    if (ext == "obu" || ext == "av1" || ext == "ivf") return StreamCodec::kAv1;
+    // The first NAL unit after a start code: parameter sets and AUDs start streams.
+    AnnexBSplit split = split_annexb(data, std::min<std::size_t>(size, 4096));
+    if (!split.nals.empty() && split.nals[0].size >= 2) {
+        const uint8_t* n = data + split.nals[0].offset;
+        const int h265_type = (n[0] >> 1) & 63, h266_type = n[1] >> 3, h264_type = n[0] & 31;
+        if (!(n[0] & 0x80)) {
+            if ((n[0] & 0x81) == 0 && (n[1] & 7) != 0 && h265_type >= 32 && h265_type <= 35) return StreamCodec::kH265;
+            if (n[0] == 0 && (n[1] & 7) != 0 && h266_type >= 12 && h266_type <= 20) return StreamCodec::kH266;
+            if (h264_type == 7 || h264_type == 9 || h264_type == 6) return StreamCodec::kH264;
+        }
+    }
+    if (looks_like_av1_annexb(data, size)) return StreamCodec::kAv1;
+    return std::nullopt;
+}
+
+int StreamScan::bad_units() const {
+    int n = 0;
+    for (const AccessUnit& u : units) n += !u.warnings.empty();
+    return n;
+}
+
+StreamScan scan_stream(const uint8_t* data, std::size_t size, StreamCodec codec) {
+    if (codec == StreamCodec::kAv1) return scan_av1_stream(data, size);
+    return scan_nal_stream(data, size, codec);
+}
+
+StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> codec) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(ErrorCode::kIo, "cannot open stream '" + path + "'");
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!codec) codec = detect_stream_codec(bytes.data(), bytes.size(), path);
+    if (!codec)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "cannot tell the codec of '" + path + "' (give --codec h264|h265|h266|av1)");
+    return scan_stream(bytes.data(), bytes.size(), *codec);
+}
+
+std::vector<const AccessUnit*> units_in_output_order(const StreamScan& scan) {
+    std::vector<const AccessUnit*> out;
+    for (const AccessUnit& u : scan.units)
+        if (u.output && u.pictures > 0) out.push_back(&u);
+    if (scan.codec == StreamCodec::kAv1) return out;
+    // Units without a POC (field pictures, H.266) keep the decode order throughout.
+    for (const AccessUnit* u : out)
+        if (!u->poc) return out;
+    std::sort(out.begin(), out.end(), [](const AccessUnit* a, const AccessUnit* b) {
+        if (a->sequence != b->sequence) return a->sequence < b->sequence;
+        if (*a->poc != *b->poc) return *a->poc < *b->poc;
+        return a->index < b->index;
+    });
+    return out;
+}
+
+}  // namespace filmgrain::bitstream

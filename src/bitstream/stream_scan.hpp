@@ -1,0 +1,70 @@
+// Finds every film grain payload in a coded stream and the access unit (H.26x) or
+// temporal unit (AV1) it belongs to: FGC SEI messages (payloadType 19) and ITU-T T.35
+// registered user data (SEI payloadType 4, AV1 metadata OBUs). Damage in one unit is a
+// warning on that unit; scanning goes on with the next one.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bitstream/av1_obu.hpp"
+#include "bitstream/sei_messages.hpp"
+#include "filmgrain/fgc_params.hpp"
+
+namespace filmgrain::bitstream {
+
+enum class StreamCodec { kH264, kH265, kH266, kAv1 };
+const char* stream_codec_name(StreamCodec c);  // "h264", "h265", "h266", "av1"
+StreamCodec parse_stream_codec(const std::string& name);  // also avc/hevc/vvc; throws Error
+
+// From the first bytes (IVF/OBU layouts, NAL header patterns), then the file name's
+// extension; nullopt when neither tells.
+std::optional<StreamCodec> detect_stream_codec(const uint8_t* data, std::size_t size, const std::string& path);
+
+struct FoundFgc {
+    bool suffix = false;           // in a suffix SEI NAL unit
+    std::vector<uint8_t> payload;  // the payloadType 19 body
+    std::optional<FgcParams> params;
+    std::string error;             // why the payload did not parse
+};
+
+struct FoundT35 {
+    bool suffix = false;
+    T35Payload t35;
+};
+
+struct AccessUnit {
+    int index = 0;            // decode order
+    std::size_t offset = 0;   // first byte of the unit in the file
+    std::string picture_type; // nal_unit_type name of the first VCL NAL unit
+    std::optional<int> poc;
+    std::optional<int> idr_pic_id;  // H.264 only
+    int sequence = 0;         // coded video sequence count (IDR / IRAP with NoRaslOutputFlag)
+    bool output = true;       // false for pictures a decoder drops (RASL after a CRA start)
+    std::optional<int64_t> pts;  // AV1 IVF timestamp
+    int nal_units = 0;        // NAL units, or OBUs for AV1
+    int pictures = 0;         // VCL NAL units starting a picture, or frame/frame-header OBUs
+    std::vector<FoundFgc> fgc;
+    std::vector<FoundT35> t35;
+    std::vector<std::string> warnings;
+};
+
+struct StreamScan {
+    StreamCodec codec = StreamCodec::kH265;
+    std::string container;    // "annexb", "ivf", "obu", "annexb-av1"
+    std::string poc_support;  // what the picture order counts rest on
+    std::vector<AccessUnit> units;
+    std::vector<std::string> warnings;
+    int bad_units() const;    // units with warnings
+};
+
+StreamScan scan_stream(const uint8_t* data, std::size_t size, StreamCodec codec);
+// Reads the file (Error kIo when it cannot) and scans it; codec detected when absent.
+StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> codec);
+
+// The units a decoder outputs, in output order: by POC within each coded video sequence
+// (H.26x), in decode order for AV1 and for units without a POC.
+std::vector<const AccessUnit*> units_in_output_order(const StreamScan& scan);
+
+}  // namespace filmgrain::bitstream

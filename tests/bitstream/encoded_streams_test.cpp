@@ -1,0 +1,190 @@
+// The stream parsers on real encoder output made here: x265 and x264 streams with FGC
+// SEI messages inserted by the project's own SEI writer, aomenc streams with T.35
+// metadata OBUs. Checks: every payload found in its access unit, POC and output order
+// against the encoders' known GOP structure, and damaged copies reported, not crashing.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bitstream/metadata_insertion.hpp"
+#include "bitstream/stream_report.hpp"
+#include "bitstream/stream_scan.hpp"
+#include "metadata/fgc_sei.hpp"
+#include "stream_fixtures.hpp"
+
+using namespace filmgrain;
+using namespace filmgrain::bitstream;
+using namespace filmgrain::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kFrames = 16;
+
+// FGC SEI in every access unit: prefix for even indices, suffix for odd ones (H.265),
+// always with a T.35 message beside it in the same SEI NAL unit.
+AccessUnitSei sei_for(StreamCodec codec, int au) {
+    AccessUnitSei s;
+    SeiMessage fgc{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au),
+                                                         codec == StreamCodec::kH264 ? FgcCodec::kAvc : FgcCodec::kHevc)};
+    SeiMessage t35{kSeiPayloadT35, {0xB5, 0x00, 0x3C, uint8_t(au)}};
+    if (codec == StreamCodec::kH265 && au % 2 == 1)
+        s.suffix = {fgc, t35};
+    else
+        s.prefix = {t35, fgc};
+    return s;
+}
+
+StreamScan encode_and_scan(const fs::path& dir, StreamCodec codec, const std::string& encoder_args) {
+    const fs::path src = dir / "src.y4m", raw = dir / "raw.bin", with_sei = dir / "sei.bin";
+    write_synthetic_y4m(src, 128, 96, kFrames, 8);
+    const std::string cmd = codec == StreamCodec::kH264
+                                ? "x264 --quiet " + encoder_args + " -o '" + raw.string() + "' '" + src.string() + "'"
+                                : "x265 --log-level error " + encoder_args + " --input '" + src.string() + "' -o '" +
+                                      raw.string() + "'";
+    if (!run_or_fail(cmd)) return {};
+    const auto stream = insert_sei(read_bytes(raw), codec, [&](int au) { return sei_for(codec, au); });
+    write_bytes(with_sei, stream);
+    return scan_stream(stream.data(), stream.size(), codec);
+}
+
+void expect_every_payload_in_its_unit(const StreamScan& scan, StreamCodec codec) {
+    ASSERT_EQ(scan.units.size(), std::size_t(kFrames));
+    for (const AccessUnit& u : scan.units) {
+        SCOPED_TRACE("access unit " + std::to_string(u.index));
+        EXPECT_TRUE(u.warnings.empty()) << u.warnings[0];
+        EXPECT_EQ(u.pictures, 1);
+        ASSERT_EQ(u.fgc.size(), 1u);
+        ASSERT_TRUE(u.fgc[0].params.has_value()) << u.fgc[0].error;
+        EXPECT_EQ(u.fgc[0].suffix, codec == StreamCodec::kH265 && u.index % 2 == 1);
+        const FgcParams want = fgc_params_for(u.index);
+        EXPECT_EQ(u.fgc[0].params->comp[0].intervals[0].comp_model_value, want.comp[0].intervals[0].comp_model_value);
+        EXPECT_EQ(u.fgc[0].params->comp[1].intervals[0].comp_model_value, want.comp[1].intervals[0].comp_model_value);
+        ASSERT_EQ(u.t35.size(), 1u);
+        EXPECT_EQ(u.t35[0].t35.country_code, 0xB5);
+        EXPECT_EQ(u.t35[0].t35.provider_code, 0x003C);
+        EXPECT_EQ(u.t35[0].t35.bytes.back(), u.index);
+    }
+}
+
+// With a fixed GOP of `gop` pictures, output picture k is display frame k; its POC is
+// `scale` * (k - first frame of its coded video sequence).
+void expect_output_order_pocs(const StreamScan& scan, int gop, int scale, bool closed) {
+    const auto order = units_in_output_order(scan);
+    ASSERT_EQ(order.size(), std::size_t(kFrames));
+    for (int k = 0; k < kFrames; k++) {
+        SCOPED_TRACE("output picture " + std::to_string(k));
+        ASSERT_TRUE(order[k]->poc.has_value());
+        EXPECT_EQ(*order[k]->poc, scale * (closed ? k % gop : k));
+        EXPECT_EQ(order[k]->sequence, closed ? k / gop : 0);
+    }
+}
+
+}  // namespace
+
+TEST(EncodedStreams, H265ClosedGopIdrWithBFramesAndPrefixSuffixSei) {
+    const fs::path dir = fresh_test_dir("h265-closed");
+    const StreamScan scan = encode_and_scan(dir, StreamCodec::kH265,
+                                            "--preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 --no-scenecut "
+                                            "--no-open-gop");
+    EXPECT_EQ(scan.units[0].picture_type.substr(0, 3), "IDR");
+    EXPECT_EQ(scan.units[8].picture_type.substr(0, 3), "IDR");
+    expect_every_payload_in_its_unit(scan, StreamCodec::kH265);
+    expect_output_order_pocs(scan, 8, 1, true);
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, H265OpenGopCraKeepsCountingPoc) {
+    const fs::path dir = fresh_test_dir("h265-open");
+    const StreamScan scan = encode_and_scan(dir, StreamCodec::kH265,
+                                            "--preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 --no-scenecut "
+                                            "--open-gop");
+    bool saw_cra = false;
+    for (const auto& u : scan.units) saw_cra = saw_cra || u.picture_type == "CRA_NUT";
+    EXPECT_TRUE(saw_cra);
+    expect_every_payload_in_its_unit(scan, StreamCodec::kH265);
+    expect_output_order_pocs(scan, 8, 1, false);
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, H264PocType0WithBFrames) {
+    const fs::path dir = fresh_test_dir("h264-b");
+    const StreamScan scan = encode_and_scan(dir, StreamCodec::kH264,
+                                            "--preset ultrafast --bframes 2 --b-adapt 0 --keyint 8 --min-keyint 8 "
+                                            "--no-scenecut");
+    expect_every_payload_in_its_unit(scan, StreamCodec::kH264);
+    // x264 counts POC in fields: 2 per frame
+    expect_output_order_pocs(scan, 8, 2, true);
+    for (const auto& u : scan.units) EXPECT_TRUE(u.idr_pic_id.has_value());
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, H264PocType2WithoutBFrames) {
+    const fs::path dir = fresh_test_dir("h264-p");
+    const StreamScan scan = encode_and_scan(dir, StreamCodec::kH264,
+                                            "--preset ultrafast --bframes 0 --keyint 8 --min-keyint 8 --no-scenecut");
+    expect_every_payload_in_its_unit(scan, StreamCodec::kH264);
+    expect_output_order_pocs(scan, 8, 2, true);
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, ParamsFileListsOutputOrderWithEachUnitsSei) {
+    const fs::path dir = fresh_test_dir("h265-params");
+    const StreamScan scan = encode_and_scan(dir, StreamCodec::kH265,
+                                            "--preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 --no-scenecut "
+                                            "--no-open-gop");
+    std::vector<std::string> warnings;
+    const ParamsFile f = params_file_from_scan(scan, warnings);
+    EXPECT_TRUE(warnings.empty());
+    const auto order = units_in_output_order(scan);
+    ASSERT_EQ(f.frames.size(), order.size());
+    for (std::size_t k = 0; k < order.size(); k++) {
+        EXPECT_EQ(f.frames[k].poc, order[k]->poc);
+        ASSERT_TRUE(f.frames[k].fgc.has_value());
+        EXPECT_EQ(f.frames[k].fgc->comp[0].intervals[0].comp_model_value,
+                  fgc_params_for(order[k]->index).comp[0].intervals[0].comp_model_value);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, AomencStreamWithT35MetadataObus) {
+    const fs::path dir = fresh_test_dir("av1-t35");
+    const fs::path src = dir / "src.y4m", raw = dir / "raw.ivf";
+    write_synthetic_y4m(src, 64, 64, 4, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=4 --cpu-used=6 --film-grain-test=2 -o '" + raw.string() +
+                            "' '" + src.string() + "'"));
+    const auto stream = insert_av1_t35(read_bytes(raw), [](int tu) {
+        return std::vector<std::vector<uint8_t>>{{0xB5, 0x58, 0x90, 0x01, uint8_t(tu), 0x00, 0x00, 0x01}};
+    });
+    const StreamScan scan = scan_stream(stream.data(), stream.size(), StreamCodec::kAv1);
+    EXPECT_EQ(scan.container, "ivf");
+    ASSERT_EQ(scan.units.size(), 4u);
+    for (const AccessUnit& u : scan.units) {
+        EXPECT_TRUE(u.warnings.empty());
+        EXPECT_GE(u.pictures, 1);
+        ASSERT_EQ(u.t35.size(), 1u);
+        EXPECT_TRUE(is_afgs1_t35(u.t35[0].t35));
+        EXPECT_EQ(u.t35[0].t35.bytes[3], u.index);
+        EXPECT_EQ(u.t35[0].t35.bytes.size(), 7u);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, TruncatedAndCorruptedCopiesAreReportedNotFatal) {
+    const fs::path dir = fresh_test_dir("h265-damage");
+    const StreamScan clean = encode_and_scan(dir, StreamCodec::kH265, "--preset ultrafast --bframes 3 --keyint 8");
+    const auto stream = read_bytes(dir / "sei.bin");
+    ASSERT_FALSE(stream.empty());
+    std::mt19937 rng(3);
+    int damaged_reports = 0;
+    for (int trial = 0; trial < 200; trial++) {
+        std::vector<uint8_t> s(stream.begin(), stream.begin() + long(rng() % stream.size()));
+        for (int flips = 0; flips < 4 && !s.empty(); flips++) s[rng() % s.size()] ^= uint8_t(1u << (rng() % 8));
+        const StreamScan scan = scan_stream(s.data(), s.size(), StreamCodec::kH265);
+        EXPECT_LE(scan.units.size(), clean.units.size() + 8);
+        damaged_reports += scan.bad_units() > 0 || !scan.warnings.empty();
+    }
+    // bit flips inside SEI payloads, parameter sets or slice headers must show up somewhere
+    EXPECT_GT(damaged_reports, 0);
+    fs::remove_all(dir);
+}

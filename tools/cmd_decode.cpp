@@ -1,0 +1,166 @@
+// `filmgrain decode INPUT -o OUT.y4m|OUT.yuv|-`: decodes a real file through FFmpeg's
+// libraries with film grain exported instead of applied, and adds our grain from the
+// exported parameters.
+//
+// Seeds: AV1 frames carry grain_seed in their parameters (AVFilmGrainParams::seed), used
+// as is. For H.264/H.265 FFmpeg exports the FGC SEI in force for the frame with a seed it
+// derived: H.265 the picture's PicOrderCntVal, H.264 pic_offset = POC + (idr_pic_id << 5)
+// (SMPTE RDD 5). It becomes the picture's POC with idr_pic_id 0, which gives rdd5 exactly
+// the seed FFmpeg computed; vtm seeds from the POC alone, so for H.264 streams with a
+// non-zero idr_pic_id the vtm seed includes FFmpeg's idr_pic_id term. vfgs never reseeds.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "filmgrain/error.hpp"
+
+#ifdef FILMGRAIN_HAVE_LIBAV
+#include "av1/av1_synthesis.hpp"
+#include "fgc/fgc_synthesizer.hpp"
+#include "filmgrain/vfgs.hpp"
+#include "libav/video_decoder.hpp"
+#endif
+
+namespace filmgrain::cli {
+namespace {
+
+struct DecodeOptions {
+    std::string input, output, format, flavour = "rdd5";
+    bool quiet = false;
+    bool no_grain = false;
+};
+
+#ifdef FILMGRAIN_HAVE_LIBAV
+
+class Progress {
+public:
+    Progress(bool enabled, int64_t total) : enabled_(enabled), total_(total), start_(Clock::now()), last_(start_) {}
+    void frame_done(int64_t n) {
+        if (!enabled_) return;
+        const auto now = Clock::now();
+        if (now - last_ < std::chrono::milliseconds(500)) return;
+        last_ = now;
+        print(n, now);
+    }
+    void finish(int64_t n) {
+        if (!enabled_) return;
+        print(n, Clock::now());
+        std::fputc('\n', stderr);
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    void print(int64_t n, Clock::time_point now) {
+        const double s = std::chrono::duration<double>(now - start_).count();
+        const double fps = s > 0 ? double(n) / s : 0;
+        if (total_ > 0 && fps > 0 && n <= total_)
+            std::fprintf(stderr, "\rfilmgrain: frame %lld/%lld, %.1f fps, ETA %.0f s   ", (long long)n,
+                         (long long)total_, fps, double(total_ - n) / fps);
+        else
+            std::fprintf(stderr, "\rfilmgrain: frame %lld, %.1f fps   ", (long long)n, fps);
+        std::fflush(stderr);
+    }
+    bool enabled_;
+    int64_t total_;
+    Clock::time_point start_, last_;
+};
+
+int run_decode(const DecodeOptions& o) {
+    const FgcFlavour flavour = parse_flavour(o.flavour);
+    bool y4m = o.output == "-" || has_y4m_extension(o.output);
+    if (!o.format.empty()) {
+        if (o.format != "y4m" && o.format != "yuv")
+            throw Error(ErrorCode::kInvalidArgument, "--format '" + o.format + "' is not known (allowed y4m, yuv)");
+        y4m = o.format == "y4m";
+    }
+    libav::VideoDecoder decoder(o.input);
+    const libav::StreamDescription& d = decoder.description();
+
+    FgcOptions fo;
+    fo.flavour = flavour;
+    std::unique_ptr<FgcSynthesizer> fgc;
+    std::unique_ptr<vfgs::Synthesizer> vfgs_synth;
+    std::unique_ptr<VideoWriter> writer;
+    VideoInfo info;
+    libav::DecodedFrame frame;
+    int64_t n = 0, with_grain = 0;
+    Progress progress(!o.quiet && o.output != "-" && isatty(STDERR_FILENO), d.frames_estimate);
+    while (decoder.next(frame)) {
+        if (!writer) {
+            info.width = frame.picture.width();
+            info.height = frame.picture.height();
+            info.format = frame.picture.format();
+            info.fps_num = d.fps_num;
+            info.fps_den = d.fps_den;
+            info.y4m = y4m;
+            writer = std::make_unique<VideoWriter>(o.output, info, y4m);
+        } else if (frame.picture.width() != info.width || frame.picture.height() != info.height ||
+                   frame.picture.format().chroma != info.format.chroma ||
+                   frame.picture.format().bit_depth != info.format.bit_depth) {
+            throw Error(ErrorCode::kUnsupported, "frame " + std::to_string(n) + " changes the picture size or format (" +
+                                                     std::to_string(frame.picture.width()) + "x" +
+                                                     std::to_string(frame.picture.height()) + "), which " +
+                                                     (y4m ? "Y4M" : "a raw YUV file") + " cannot hold");
+        }
+        const FrameView v = frame.picture.view();
+        if (o.no_grain) {
+            // the decoder's output as it is: the clean pictures grain is added to
+        } else if (frame.av1) {
+            av1::apply_film_grain(*frame.av1, v, v, frame.matrix_coefficients);
+            with_grain++;
+        } else if (frame.fgc) {
+            if (flavour == FgcFlavour::kVfgs) {
+                if (!vfgs_synth) vfgs_synth = std::make_unique<vfgs::Synthesizer>(vfgs::Options{});
+                vfgs_synth->set_params(*frame.fgc);
+                vfgs_synth->apply(v, v);
+            } else {
+                if (!fgc) fgc = std::make_unique<FgcSynthesizer>(fo);
+                fgc->receive_sei(*frame.fgc, frame.fgc_codec);
+                const FgcPictureIds ids{int(frame.seed), 0};
+                fgc->apply(v, v, ids);
+            }
+            with_grain++;
+        }
+        writer->write(frame.picture);
+        n++;
+        progress.frame_done(n);
+    }
+    if (n == 0) throw Error(ErrorCode::kIo, "'" + o.input + "' decoded to no frame");
+    writer->commit();
+    progress.finish(n);
+    if (!o.quiet && o.output != "-")
+        std::fprintf(stderr, "filmgrain: %lld frame(s) (%s via %s, %lld with film grain) written to %s\n", (long long)n,
+                     d.codec_name.c_str(), d.decoder_name.c_str(), (long long)with_grain, o.output.c_str());
+    return 0;
+}
+
+#else
+
+int run_decode(const DecodeOptions&) {
+    throw Error(ErrorCode::kUnsupported, "this build of filmgrain has no libavformat/libavcodec (see tools/install-deps)");
+}
+
+#endif
+
+}  // namespace
+
+void register_decode(CLI::App& app) {
+    auto o = std::make_shared<DecodeOptions>();
+    CLI::App* sub = app.add_subcommand(
+        "decode", "decode a video file with FFmpeg's libraries and add film grain from its metadata (AV1, FGC SEI)");
+    sub->add_option("input", o->input, "any file libavformat reads (AV1 via libdav1d/libaom, H.264, H.265, ...)")
+        ->required();
+    sub->add_option("--output,-o", o->output, "output: .y4m, .yuv (raw planar), or - for Y4M on stdout")->required();
+    sub->add_option("--format", o->format, "y4m or yuv (default: from the output name; Y4M for -)");
+    sub->add_option("--flavour", o->flavour, "FGC SEI model: rdd5, vtm or vfgs")->capture_default_str();
+    sub->add_flag("--no-grain", o->no_grain, "write the decoded pictures without film grain");
+    sub->add_flag("--quiet,-q", o->quiet, "no progress or messages on stderr except errors");
+    sub->callback([o]() {
+        if (int rc = run_decode(*o)) throw CLI::RuntimeError(rc);
+    });
+}
+
+}  // namespace filmgrain::cli

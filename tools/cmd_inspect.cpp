@@ -1,0 +1,111 @@
+// `filmgrain inspect STREAM [--json]` and `filmgrain params extract STREAM -o params.json`:
+// the film grain metadata inside a coded H.264/H.265/H.266/AV1 stream.
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "bitstream/stream_report.hpp"
+#include "bitstream/stream_scan.hpp"
+#include "cli_common.hpp"
+#include "filmgrain/error.hpp"
+
+namespace filmgrain::cli {
+namespace {
+
+struct InspectOptions {
+    std::string stream, codec, output;
+    bool json = false;
+    bool quiet = false;
+};
+
+bitstream::StreamScan scan(const InspectOptions& o) {
+    std::optional<bitstream::StreamCodec> codec;
+    if (!o.codec.empty()) codec = bitstream::parse_stream_codec(o.codec);
+    return bitstream::scan_stream_file(o.stream, codec);
+}
+
+int run_inspect(const InspectOptions& o) {
+    const bitstream::StreamScan s = scan(o);
+    if (o.json)
+        std::printf("%s\n", bitstream::stream_scan_to_json(s).dump(2).c_str());
+    else
+        std::fputs(bitstream::stream_scan_to_text(s).c_str(), stdout);
+    // Damage is reported per unit and does not fail the listing; a stream with nothing
+    // recognisable in it does.
+    if (s.units.empty()) throw Error(ErrorCode::kMalformedPayload, "'" + o.stream + "' holds no access unit");
+    return 0;
+}
+
+// Writes beside the target and renames, so a failed run leaves no file.
+void write_file_atomically(const std::string& path, const std::string& text) {
+    if (path == "-") {
+        std::fputs(text.c_str(), stdout);
+        return;
+    }
+    const std::string tmp = path + ".tmp-filmgrain";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out.flush()) {
+            std::remove(tmp.c_str());
+            throw Error(ErrorCode::kIo, "cannot write '" + tmp + "'");
+        }
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw Error(ErrorCode::kIo, "cannot rename '" + tmp + "' to '" + path + "'");
+    }
+}
+
+int run_extract(const InspectOptions& o) {
+    const bitstream::StreamScan s = scan(o);
+    std::vector<std::string> warnings;
+    for (const auto& u : s.units)
+        for (const auto& w : u.warnings) warnings.push_back("unit " + std::to_string(u.index) + ": " + w);
+    const ParamsFile f = bitstream::params_file_from_scan(s, warnings);
+    if (!o.quiet)
+        for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
+    write_file_atomically(o.output, params_file_to_json(f).dump(1) + "\n");
+    int with_sei = 0;
+    for (const auto& fr : f.frames) with_sei += fr.fgc.has_value();
+    if (!o.quiet && o.output != "-")
+        std::fprintf(stderr, "filmgrain: %zu picture(s), %d with an FGC SEI, written to %s\n", f.frames.size(), with_sei,
+                     o.output.c_str());
+    return 0;
+}
+
+void add_stream_options(CLI::App* sub, InspectOptions* o) {
+    sub->add_option("stream", o->stream, "coded stream: Annex-B H.264/H.265/H.266, AV1 IVF / OBU / Annex-B")->required();
+    sub->add_option("--codec", o->codec, "h264, h265, h266 or av1 (default: from the content and the file name)");
+}
+
+}  // namespace
+
+void register_inspect(CLI::App& app) {
+    auto o = std::make_shared<InspectOptions>();
+    CLI::App* sub = app.add_subcommand("inspect", "list the FGC SEI and ITU-T T.35 payloads of a stream per access unit");
+    add_stream_options(sub, o.get());
+    sub->add_flag("--json", o->json, "JSON instead of text");
+    sub->callback([o]() {
+        if (int rc = run_inspect(*o)) throw CLI::RuntimeError(rc);
+    });
+
+    auto e = std::make_shared<InspectOptions>();
+    // `params` also holds `convert` (cmd_params.cpp): join it when it is there
+    CLI::App* params = nullptr;
+    for (CLI::App* sub_app : app.get_subcommands([](CLI::App* a) { return a->get_name() == "params"; })) params = sub_app;
+    if (!params) {
+        params = app.add_subcommand("params", "parameter files");
+        params->require_subcommand(1);
+    }
+    CLI::App* extract = params->add_subcommand(
+        "extract", "write the per-frame parameter file (output order, POC, FGC SEI) that `apply --params` reads");
+    add_stream_options(extract, e.get());
+    extract->add_option("--output,-o", e->output, "parameter file to write, - for stdout")->required();
+    extract->add_flag("--quiet,-q", e->quiet, "no messages on stderr except errors");
+    extract->callback([e]() {
+        if (int rc = run_extract(*e)) throw CLI::RuntimeError(rc);
+    });
+}
+
+}  // namespace filmgrain::cli
