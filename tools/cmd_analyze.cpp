@@ -18,6 +18,7 @@
 #include "analysis/plane_image.hpp"
 #include "av1/av1_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
 #endif
 
@@ -27,7 +28,7 @@ namespace filmgrain::cli {
 namespace {
 
 struct AnalyzeOptions {
-    std::string input, denoised, model, output, table, sei, report;
+    std::string input, denoised, model, output, table, sei, report, afgs1;
     std::string sei_codec = "hevc";
     std::string flavour = "rdd5";
     int frame_step = 0;
@@ -79,6 +80,7 @@ int run_analyze(const AnalyzeOptions& o) {
         throw Error(ErrorCode::kInvalidArgument, "--model '" + o.model + "' is not known (allowed fgc, av1)");
     const bool fgc = o.model == "fgc";
     if (fgc && !o.table.empty()) throw Error(ErrorCode::kInvalidArgument, "--table belongs to --model av1");
+    if (fgc && !o.afgs1.empty()) throw Error(ErrorCode::kInvalidArgument, "--afgs1 belongs to --model av1");
     if (!fgc && !o.sei.empty()) throw Error(ErrorCode::kInvalidArgument, "--sei belongs to --model fgc");
     const FgcFlavour flavour = parse_flavour(o.flavour);
     if (flavour == FgcFlavour::kVfgs)
@@ -237,6 +239,27 @@ int run_analyze(const AnalyzeOptions& o) {
     }
     write_file_atomically(o.output, params_text);
     if (!o.table.empty()) write_file_atomically(o.table, av1_grain_table_text(av1_frames, info.fps_num, info.fps_den));
+    if (!o.afgs1.empty() && !av1_frames.empty()) {
+        // One AFGS1 T.35 payload carrying the estimated set for pictures of the input's
+        // size, subsampling and bit depth (the seed is that of the first picture).
+        Afgs1ParamSet set;
+        set.params = av1_frames.front();
+        set.params.update_grain = 1;
+        int log2 = 0;  // the 12-bit resolution fields count units of 1 << log2 samples
+        while (((info.width >> log2) >= 4096 || (info.height >> log2) >= 4096) && log2 < 15) log2++;
+        set.target.apply_units_resolution_log2 = log2;
+        set.target.apply_horz_resolution = info.width >> log2;
+        set.target.apply_vert_resolution = info.height >> log2;
+        set.target.luma_only_flag = fmt.chroma == ChromaFormat::k400;
+        set.target.subsampling_x = set.target.luma_only_flag ? 0 : chroma_shift_x(fmt.chroma);
+        set.target.subsampling_y = set.target.luma_only_flag ? 0 : chroma_shift_y(fmt.chroma);
+        set.target.bit_depth_minus8 = fmt.bit_depth - 8;
+        set.target.video_signal_characteristics_flag = fmt.bit_depth != 8;
+        Afgs1Payload payload;
+        payload.sets.push_back(set);
+        const std::vector<uint8_t> bytes = write_afgs1(payload);
+        write_file_atomically(o.afgs1, std::string(bytes.begin(), bytes.end()));
+    }
     if (!o.sei.empty()) {
         const std::vector<uint8_t> payload = write_fgc_sei_payload(fgc_params, codec);
         write_file_atomically(o.sei, std::string(payload.begin(), payload.end()));
@@ -260,6 +283,7 @@ void register_analyze(CLI::App& app) {
     sub->add_option("--model", o->model, "fgc (FGC SEI frequency-filtering model) or av1 (AV1 / AFGS1)")->required();
     sub->add_option("--output,-o", o->output, "parameter JSON, usable as `filmgrain apply --params`")->required();
     sub->add_option("--table", o->table, "av1: also write a libaom film grain table (filmgrn1)");
+    sub->add_option("--afgs1", o->afgs1, "av1: also write an AFGS1 ITU-T T.35 payload (one set for the input's format)");
     sub->add_option("--sei", o->sei, "fgc: also write the FGC SEI payload (payloadType 19 body)");
     sub->add_option("--sei-codec", o->sei_codec, "fgc: SEI syntax variant avc, hevc or vvc")->capture_default_str();
     sub->add_option("--report", o->report, "HTML report; its PNG images are written beside it");

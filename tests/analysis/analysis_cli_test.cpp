@@ -11,7 +11,10 @@
 #include "core/frame_buffer.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "io/video_file.hpp"
+#include "io/xz_file.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/aom_grain_table.hpp"
+#include "metadata/av1_params_json.hpp"
 #include "metadata/fgc_sei.hpp"
 #include "metadata/params_file.hpp"
 #include "synthetic_content.hpp"
@@ -92,13 +95,21 @@ TEST(AnalysisCli, Av1JsonAndTableFeedApply) {
     write_clip(d / "grainy.y4m", d / "clean.y4m", 4);
     std::string log;
     ASSERT_EQ(run_command(tool() + " analyze " + (d / "grainy.y4m").string() + " --denoised " + (d / "clean.y4m").string() +
-                              " --model av1 -o " + (d / "p.json").string() + " --table " + (d / "p.tbl").string() + " -q",
+                              " --model av1 -o " + (d / "p.json").string() + " --table " + (d / "p.tbl").string() +
+                              " --afgs1 " + (d / "p.afgs1").string() + " -q",
                           &log),
               0)
         << log;
     const AomGrainTable t = read_aom_grain_table((d / "p.tbl").string());
     ASSERT_EQ(t.entries.size(), 4u);
     EXPECT_EQ(t.entries[0].params.apply_grain, 1);
+    // The AFGS1 payload carries the first picture's estimated set, for the input's format.
+    Afgs1Reader reader;
+    const Afgs1Payload pl = reader.receive(read_whole_file((d / "p.afgs1").string()));
+    ASSERT_EQ(pl.sets.size(), 1u);
+    Av1FilmGrainParams want = t.entries[0].params, got = pl.sets[0].params;
+    want.update_grain = got.update_grain = 1;
+    EXPECT_EQ(av1_params_to_json(got), av1_params_to_json(want));
     for (const char* p : {"p.json", "p.tbl"})
         EXPECT_EQ(run_command(tool() + " apply -i " + (d / "clean.y4m").string() + " -o " + (d / "re.y4m").string() +
                                   " --params " + (d / p).string() + " -q",
