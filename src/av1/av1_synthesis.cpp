@@ -14,6 +14,17 @@
 
 namespace filmgrain::av1 {
 
+namespace {
+// A plane (or stripe) that gets no grain is only copied, and only when not in place.
+template <typename Pixel>
+void copy_rows_without_grain(const PlaneView& s, const PlaneView& d, int y0, int rows, int width) {
+    if (s.data == d.data) return;
+    for (int y = y0; y < y0 + rows; ++y)
+        std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(width));
+}
+}  // namespace
+
+
 Av1SynthesisContext::Av1SynthesisContext(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width,
                                          int height, int matrix_coefficients) {
     reset(p, format, bit_depth, width, height, matrix_coefficients);
@@ -83,9 +94,7 @@ void Av1SynthesisContext::apply_stripe(const FrameView& src, const FrameView& ds
         const PlaneView& s = src.planes[pl];
         const PlaneView& d = dst.planes[pl];
         if (!has_grain_[pl]) {
-            if (s.data != d.data)
-                for (int y = y0; y < y0 + rows; ++y)
-                    std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(pw));
+            copy_rows_without_grain<Pixel>(s, d, y0, rows, pw);
             continue;
         }
         const StripeNoise noise =
@@ -101,9 +110,7 @@ void Av1SynthesisContext::apply_stripe(const FrameView& src, const FrameView& ds
     const PlaneView& s = src.planes[0];
     const PlaneView& d = dst.planes[0];
     if (!has_grain_[0]) {
-        if (s.data != d.data)
-            for (int y = luma_y0; y < luma_y0 + luma_rows; ++y)
-                std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(width_));
+        copy_rows_without_grain<Pixel>(s, d, luma_y0, luma_rows, width_);
         return;
     }
     const StripeNoise noise =
@@ -154,9 +161,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const PlaneView& s = src.planes[pl];
         const PlaneView& d = dst.planes[pl];
         if (!has_grain_[pl]) {
-            if (s.data != d.data)
-                for (int y = y0; y < y0 + rows; ++y)
-                    std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(pw));
+            copy_rows_without_grain<Pixel>(s, d, y0, rows, pw);
             continue;
         }
         if (rows <= 0) continue;
@@ -178,9 +183,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     const PlaneView& s = src.planes[0];
     const PlaneView& d = dst.planes[0];
     if (!has_grain_[0]) {
-        if (s.data != d.data)
-            for (int y = luma_y0; y < luma_y0 + luma_rows; ++y)
-                std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(width_));
+        copy_rows_without_grain<Pixel>(s, d, luma_y0, luma_rows, width_);
         return;
     }
     build_noise(0, 0, 0, luma_rows);
