@@ -171,6 +171,7 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
     std::atomic<int> min_used{1 << 30}, max_used{0};
     auto worker = [&]() {
         TileEstimate est;
+        GrainField field;
         for (int t; (t = next.fetch_add(1)) < report.tiles;) {
             const int tx = t % tiles_x, ty = t / tiles_x;
             TileRect rect;
@@ -178,10 +179,9 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
             rect.y0 = r.y + ty * tile;
             rect.x1 = std::min(rect.x0 + tile, r.x + r.w);
             rect.y1 = std::min(rect.y0 + tile, r.y + r.h);
-            const GrainField field(intensity, law, k, plane_seed, output_to_input(rect.x0, p.zoom) + xmin,
-                                   output_to_input(rect.y0, p.zoom) + ymin,
-                                   output_to_input(rect.x1 - 1, p.zoom) + xmax,
-                                   output_to_input(rect.y1 - 1, p.zoom) + ymax, algo == BooleanAlgorithm::kPixelWise);
+            field.generate(intensity, law, k, plane_seed, output_to_input(rect.x0, p.zoom) + xmin,
+                           output_to_input(rect.y0, p.zoom) + ymin, output_to_input(rect.x1 - 1, p.zoom) + xmax,
+                           output_to_input(rect.y1 - 1, p.zoom) + ymax, algo == BooleanAlgorithm::kPixelWise);
             grains += field.grains().size();
             SampleSchedule sched;
             sched.offsets = &xi;

@@ -77,9 +77,10 @@ void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity
     }
 }
 
-GrainField::GrainField(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel,
-                       uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins)
-    : k_(cells_per_pixel) {
+void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel,
+                          uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins) {
+    k_ = cells_per_pixel;
+    grains_.clear();
     const double rm = radius.max_radius();
     const int64_t cx0 = int64_t(std::floor((x0 - rm) * k_)), cx1 = int64_t(std::floor((x1 + rm) * k_));
     const int64_t cy0 = int64_t(std::floor((y0 - rm) * k_)), cy1 = int64_t(std::floor((y1 + rm) * k_));
@@ -92,9 +93,10 @@ GrainField::GrainField(const CellIntensity& intensity, const GrainRadiusLaw& rad
     nbx_ = int64_t(std::floor(x1 * k_)) - bx0_ + 1;
     nby_ = int64_t(std::floor(y1 * k_)) - by0_ + 1;
     start_.assign(std::size_t(nbx_ * nby_) + 1, 0);
-    // A small pad so that a point on a bin edge, however it rounds, finds every grain that
-    // contains it in its own bin.
-    constexpr double kPad = 1e-7;
+    // A pad (in bin units) so that every grain the float test of inside_grain() can accept
+    // for a point of a bin is listed in that bin: float rounding of bin-local coordinates is
+    // below 1e-6 bin units, the pad is a hundred times that.
+    constexpr double kPad = 1e-4;
     auto bin_range = [&](const Grain& g, int64_t& lx, int64_t& hx, int64_t& ly, int64_t& hy) {
         const double r = std::sqrt(g.r2);
         lx = std::max<int64_t>(int64_t(std::floor((g.x - r) * k_ - kPad)) - bx0_, 0);
@@ -110,12 +112,15 @@ GrainField::GrainField(const CellIntensity& intensity, const GrainRadiusLaw& rad
     }
     for (std::size_t i = 1; i < start_.size(); i++) start_[i] += start_[i - 1];
     binned_.resize(start_.back());
-    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    fill_.assign(start_.begin(), start_.end() - 1);
     for (const Grain& g : grains_) {
         int64_t lx, hx, ly, hy;
         bin_range(g, lx, hx, ly, hy);
+        const float r2k = r2_in_bins(g.r2, k_);
         for (int64_t by = ly; by <= hy; by++)
-            for (int64_t bx = lx; bx <= hx; bx++) binned_[fill[std::size_t(by * nbx_ + bx)]++] = g;
+            for (int64_t bx = lx; bx <= hx; bx++)
+                binned_[fill_[std::size_t(by * nbx_ + bx)]++] = {bin_local(g.x * k_, bx + bx0_),
+                                                                 bin_local(g.y * k_, by + by0_), r2k};
     }
 }
 

@@ -22,6 +22,23 @@ struct Grain {
     double x, y, r2;
 };
 
+// The coverage test is made in the frame of the bin that holds the sample point: point and
+// grain centre relative to that bin's corner, in bin units, rounded to float. Bin corners
+// are global (a multiple of 1/cells_per_pixel), so the rounding depends on the point and the
+// grain only, never on the tile or the thread; and the pixel-wise and grain-wise estimators
+// both call these helpers, so they still agree exactly. Float halves the memory a bin
+// occupies, which is what the pixel-wise look-up is bound by.
+struct BinnedGrain {
+    float x, y, r2;  // centre relative to the bin corner, squared radius, in bin units
+};
+
+inline float bin_local(double scaled, int64_t bin) { return float(scaled - double(bin)); }
+inline float r2_in_bins(double r2, double cells_per_pixel) { return float(r2 * (cells_per_pixel * cells_per_pixel)); }
+inline bool inside_grain(float lx, float ly, float gx, float gy, float r2) {
+    const float dx = lx - gx, dy = ly - gy;
+    return dx * dx + dy * dy <= r2;
+}
+
 // Per-input-pixel Poisson law of a cell's grain count, over a box of input pixels.
 class CellIntensity {
 public:
@@ -51,23 +68,27 @@ void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity
 
 // The grains that can cover any point of [x0, x1] x [y0, y1] (input-pixel units), binned on
 // the cell grid over that rectangle: a grain is listed in every bin its bounding square meets.
+// One field is reused tile after tile: its vectors keep their capacity, so a worker stops
+// allocating (and the kernel stops zeroing fresh pages) after its first tile.
 class GrainField {
 public:
-    GrainField(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel, uint64_t seed,
-               double x0, double y0, double x1, double y1, bool build_bins);
+    void generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel, uint64_t seed,
+                  double x0, double y0, double x1, double y1, bool build_bins);
 
     const std::vector<Grain>& grains() const { return grains_; }
     // Whether the point is inside some grain. The point must lie in the rectangle.
     bool covered(double px, double py) const {
-        const int64_t bx = floor_to_int(px * k_) - bx0_, by = floor_to_int(py * k_) - by0_;
-        const std::size_t b = std::size_t(by) * nbx_ + std::size_t(bx);
+        const double sx = px * k_, sy = py * k_;
+        const int64_t gbx = floor_to_int(sx), gby = floor_to_int(sy);
+        const float lx = bin_local(sx, gbx), ly = bin_local(sy, gby);
+        const std::size_t b = std::size_t(gby - by0_) * nbx_ + std::size_t(gbx - bx0_);
         for (uint32_t i = start_[b], e = start_[b + 1]; i < e; i++) {
-            const Grain& g = binned_[i];
-            const double dx = px - g.x, dy = py - g.y;
-            if (dx * dx + dy * dy <= g.r2) return true;
+            const BinnedGrain& g = binned_[i];
+            if (inside_grain(lx, ly, g.x, g.y, g.r2)) return true;
         }
         return false;
     }
+    double cells_per_pixel() const { return k_; }
 
 private:
     double k_;
@@ -75,7 +96,8 @@ private:
     int64_t nbx_ = 0, nby_ = 0;
     std::vector<Grain> grains_;
     std::vector<uint32_t> start_;
-    std::vector<Grain> binned_;
+    std::vector<BinnedGrain> binned_;
+    std::vector<uint32_t> fill_;
 };
 
 }  // namespace filmgrain::physical
