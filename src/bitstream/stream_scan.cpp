@@ -7,6 +7,7 @@
 
 #include "bitstream/h264_poc.hpp"
 #include "bitstream/h265_poc.hpp"
+#include "bitstream/h266_poc.hpp"
 #include "bitstream/nal_header.hpp"
 #include "bitstream/nal_units.hpp"
 #include "filmgrain/error.hpp"
@@ -14,6 +15,8 @@
 
 namespace filmgrain::bitstream {
 namespace {
+
+constexpr int kH266PictureHeaderNut = 19;  // H.266 Table 5
 
 NalCodec nal_codec(StreamCodec c) {
     return c == StreamCodec::kH264 ? NalCodec::kH264 : c == StreamCodec::kH265 ? NalCodec::kH265 : NalCodec::kH266;
@@ -62,13 +65,14 @@ StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec co
         scan.poc_support = "H.265 8.3.1 from SPS/PPS/first slice segment; IRAP NoRaslOutputFlag (IDR, BLA, CRA first or after EOS)";
         break;
     default:
-        scan.poc_support = "H.266: not derived; pictures are listed in decode order";
+        scan.poc_support = "H.266 8.3.1 from SPS/PPS/picture header (PH unit or in the slice); IDR, CRA/GDR first or after EOS start a CLVS; ph_poc_msb_cycle_val followed; base layer only";
         break;
     }
     AnnexBSplit split = split_annexb(data, size);
     scan.warnings = split.warnings;
     H264PocDecoder h264;
     H265PocDecoder h265;
+    H266PocDecoder h266;
     int sequence = -1;
     AccessUnit cur;
     bool cur_has_vcl = false, cur_open = false;
@@ -97,7 +101,10 @@ StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec co
         }
         const std::vector<uint8_t> rbsp = remove_emulation_prevention(nal, span.size);
         const bool vcl = is_vcl(nc, h.type);
-        const bool new_picture = vcl && vcl_starts_picture(nc, rbsp.data(), rbsp.size());
+        // H.266: a picture starts with a PH NAL unit, or with a slice carrying its picture
+        // header; either way the first slice after it is the one counted.
+        const bool new_picture =
+            vcl && (vcl_starts_picture(nc, rbsp.data(), rbsp.size()) || (codec == StreamCodec::kH266 && h266.header_pending()));
         if (cur_has_vcl && (starts_access_unit(nc, h.type) || new_picture)) finish();
         open_at(span.offset);
         cur.nal_units++;
@@ -110,16 +117,26 @@ StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec co
             if (is_sps(nc, h.type)) {
                 if (codec == StreamCodec::kH264) h264.parse_sps(rbsp);
                 if (codec == StreamCodec::kH265) h265.parse_sps(rbsp);
+                if (codec == StreamCodec::kH266) h266.parse_sps(rbsp);
             } else if (is_pps(nc, h.type)) {
                 if (codec == StreamCodec::kH264) h264.parse_pps(rbsp);
                 if (codec == StreamCodec::kH265) h265.parse_pps(rbsp);
+                if (codec == StreamCodec::kH266) h266.parse_pps(rbsp);
+            } else if (codec == StreamCodec::kH266 && h.type == kH266PictureHeaderNut) {
+                h266.parse_picture_header_unit(rbsp);
             } else if (is_prefix_sei(nc, h.type) || is_suffix_sei(nc, h.type)) {
                 collect_sei(rbsp, h.header_bytes, is_suffix_sei(nc, h.type), codec, cur);
             } else if (is_end_of_sequence(nc, h.type)) {
                 if (codec == StreamCodec::kH265) h265.end_of_sequence();
+                if (codec == StreamCodec::kH266) h266.end_of_sequence();
             } else if (vcl) {
                 cur_has_vcl = true;
-                if (!new_picture) continue;
+                if (!new_picture) {
+                    if (cur.pictures == 0 && cur.warnings.empty())
+                        cur.warnings.push_back(nal_type_name(nc, h.type) + " NAL unit at byte " + std::to_string(span.offset) +
+                                               ": a slice whose picture start (first slice or picture header) is missing");
+                    continue;
+                }
                 cur.pictures++;
                 cur.picture_type = nal_type_name(nc, h.type);
                 if (codec == StreamCodec::kH264) {
@@ -133,8 +150,11 @@ StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec co
                     if (o.starts_sequence) sequence++;
                     cur.poc = o.poc;
                     cur.output = o.output;
-                } else if (h.type >= 7 && h.type <= 8) {
-                    sequence++;
+                } else {
+                    const H266PictureOrder o = h266.picture(rbsp);
+                    if (o.clvs_start) sequence++;
+                    cur.poc = o.poc;
+                    cur.output = o.output;
                 }
                 cur.sequence = std::max(sequence, 0);
             }
@@ -264,7 +284,7 @@ std::vector<const AccessUnit*> units_in_output_order(const StreamScan& scan) {
     for (const AccessUnit& u : scan.units)
         if (u.output && u.pictures > 0) out.push_back(&u);
     if (scan.codec == StreamCodec::kAv1) return out;
-    // Units without a POC (field pictures, H.266) keep the decode order throughout.
+    // Units without a POC (H.264 field pictures) keep the decode order throughout.
     for (const AccessUnit* u : out)
         if (!u->poc) return out;
     std::sort(out.begin(), out.end(), [](const AccessUnit* a, const AccessUnit* b) {

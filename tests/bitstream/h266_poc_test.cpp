@@ -1,0 +1,225 @@
+// H.266 picture order count on hand-built streams (no H.266 encoder is packaged in Debian
+// 12): an SPS with profile_tier_level, general constraints, sub-layers and subpictures in
+// front of the POC fields, pictures whose header sits in a PH NAL unit or in the slice,
+// lsb wrap-around, an end of sequence followed by a CRA with a dropped RASL picture, and
+// ph_poc_msb_cycle_val. Every picture carries its own FGC SEI, so each unit's payload is
+// checked to stay with its picture.
+#include <gtest/gtest.h>
+
+#include "bitstream/h266_poc.hpp"
+#include "bitstream/metadata_insertion.hpp"
+#include "bitstream/nal_units.hpp"
+#include "bitstream/stream_scan.hpp"
+#include "metadata/bit_reader.hpp"
+#include "metadata/fgc_sei.hpp"
+#include "stream_fixtures.hpp"
+
+using namespace filmgrain;
+using namespace filmgrain::bitstream;
+
+namespace {
+
+constexpr int kLog2MaxLsb = 4;  // POC lsb wraps every 16
+
+void append_nal(std::vector<uint8_t>& stream, int type, int temporal_id, const BitWriter& body_in) {
+    BitWriter body = body_in;
+    body.flag(true);  // rbsp_stop_one_bit
+    body.byte_align_zero();
+    std::vector<uint8_t> rbsp = {0x00, uint8_t((type << 3) | (temporal_id + 1))};
+    rbsp.insert(rbsp.end(), body.bytes().begin(), body.bytes().end());
+    const std::vector<uint8_t> nal = add_emulation_prevention(rbsp.data(), rbsp.size());
+    stream.insert(stream.end(), {0, 0, 0, 1});
+    stream.insert(stream.end(), nal.begin(), nal.end());
+}
+
+// sps_max_sublayers_minus1 = 2 (sub-layer level flags), GCI present with reserved bits,
+// two subpictures of different size with explicit ids, two extra PH bytes with three
+// extra bits present, and optionally the POC msb cycle.
+BitWriter sps(bool msb_cycle) {
+    BitWriter w;
+    w.u(4, 0);  // sps_seq_parameter_set_id
+    w.u(4, 0);  // sps_video_parameter_set_id
+    w.u(3, 2);  // sps_max_sublayers_minus1
+    w.u(2, 1);  // 4:2:0
+    w.u(2, 1);  // CTU 64
+    w.flag(true);  // sps_ptl_dpb_hrd_params_present_flag
+    w.u(7, 1);
+    w.flag(false);
+    w.u(8, 51);
+    w.u(2, 0);
+    w.flag(true);  // gci_present_flag
+    for (int i = 0; i < 71; i++) w.flag(i % 5 == 0);
+    w.u(8, 3);  // gci_num_reserved_bits
+    w.u(3, 0);
+    w.byte_align_zero();
+    w.flag(true);   // ptl_sublayer_level_present_flag[1]
+    w.flag(false);  // [0]
+    w.byte_align_zero();
+    w.u(8, 48);  // sublayer_level_idc[1]
+    w.u(8, 1);   // ptl_num_sub_profiles
+    w.u(32, 0xdeadbeef);
+    w.flag(false);  // sps_gdr_enabled_flag
+    w.flag(true);   // sps_ref_pic_resampling_enabled_flag
+    w.flag(false);  // sps_res_change_in_clvs_allowed_flag
+    w.ue(320);      // width
+    w.ue(192);      // height
+    w.flag(true);   // conformance window
+    for (int i = 0; i < 4; i++) w.ue(i);
+    w.flag(true);  // sps_subpic_info_present_flag
+    w.ue(1);       // two subpictures
+    w.flag(false);  // sps_independent_subpics_flag
+    w.flag(false);  // sps_subpic_same_size_flag
+    // 320x192 in 64x64 CTUs: 5x3, so 3 bits for x and 2 for y.
+    w.u(3, 2);  // width_minus1[0]
+    w.u(2, 2);  // height_minus1[0]
+    w.u(2, 3);  // treated_as_pic / loop filter [0]
+    w.u(3, 3);  // top_left_x[1]
+    w.u(2, 0);  // top_left_y[1]
+    w.u(2, 0);  // flags [1]
+    w.ue(7);    // sps_subpic_id_len_minus1
+    w.flag(true);
+    w.flag(true);
+    w.u(8, 17);
+    w.u(8, 42);
+    w.ue(2);  // 10-bit
+    w.u(2, 0);
+    w.u(4, kLog2MaxLsb - 4);
+    w.flag(msb_cycle);
+    if (msb_cycle) w.ue(5);  // 6-bit msb cycle
+    w.u(2, 2);               // sps_num_extra_ph_bytes
+    for (int i = 0; i < 16; i++) w.flag(i == 1 || i == 7 || i == 12);
+    w.u(2, 0);  // sps_num_extra_sh_bytes (not read; any continuation is fine)
+    return w;
+}
+
+BitWriter pps() {
+    BitWriter w;
+    w.u(6, 0);
+    w.u(4, 0);
+    w.flag(false);
+    return w;
+}
+
+void picture_header(BitWriter& w, bool irap, int lsb, bool msb_cycle_sps, int msb_cycle = -1) {
+    w.flag(irap);   // ph_gdr_or_irap_pic_flag
+    w.flag(false);  // ph_non_ref_pic_flag
+    if (irap) w.flag(false);  // ph_gdr_pic_flag
+    w.flag(!irap);            // ph_inter_slice_allowed_flag
+    if (!irap) w.flag(true);
+    w.ue(0);  // PPS 0
+    w.u(kLog2MaxLsb, uint32_t(lsb));
+    w.u(3, 5);  // the three ph_extra_bit
+    if (msb_cycle_sps) {
+        w.flag(msb_cycle >= 0);
+        if (msb_cycle >= 0) w.u(6, uint32_t(msb_cycle));
+    }
+    w.flag(true);  // what follows in a real header; never read
+}
+
+struct Pic {
+    int type, tid, lsb;
+    bool ph_unit;
+    int expected_poc;
+    bool output = true;
+    bool clvs = false;
+    int msb_cycle = -1;
+};
+
+constexpr int kTrail = 0, kRasl = 3, kIdr = 7, kCra = 9, kPhNut = 19, kEos = 21;
+
+std::vector<uint8_t> build(const std::vector<Pic>& pics, bool msb_cycle_sps, std::size_t eos_before) {
+    std::vector<uint8_t> s;
+    append_nal(s, 15, 0, sps(msb_cycle_sps));
+    append_nal(s, 16, 0, pps());
+    for (std::size_t i = 0; i < pics.size(); i++) {
+        const Pic& p = pics[i];
+        if (i == eos_before) append_nal(s, kEos, 0, BitWriter{});
+        const auto sei = sei_nal_unit(StreamCodec::kH266, false,
+                                      {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(test_support::fgc_params_for(int(i)),
+                                                                                        FgcCodec::kVvc)}});
+        const bool irap = p.type == kIdr || p.type == kCra;
+        if (p.ph_unit) {
+            BitWriter ph;
+            picture_header(ph, irap, p.lsb, msb_cycle_sps, p.msb_cycle);
+            append_nal(s, kPhNut, p.tid, ph);
+            s.insert(s.end(), sei.begin(), sei.end());
+        } else {
+            s.insert(s.end(), sei.begin(), sei.end());
+        }
+        for (int slice = 0; slice < 2; slice++) {  // two slices: only the first starts the picture
+            BitWriter sl;
+            const bool header_here = !p.ph_unit && slice == 0;
+            sl.flag(header_here);
+            if (header_here) picture_header(sl, irap, p.lsb, msb_cycle_sps, p.msb_cycle);
+            sl.ue(3);
+            append_nal(s, p.type, p.tid, sl);
+        }
+    }
+    return s;
+}
+
+void expect_scan(const std::vector<Pic>& pics, const std::vector<uint8_t>& s) {
+    const StreamScan scan = scan_stream(s.data(), s.size(), StreamCodec::kH266);
+    EXPECT_TRUE(scan.warnings.empty());
+    ASSERT_EQ(scan.units.size(), pics.size());
+    int sequence = -1;
+    for (std::size_t i = 0; i < pics.size(); i++) {
+        const AccessUnit& u = scan.units[i];
+        SCOPED_TRACE("picture " + std::to_string(i));
+        EXPECT_TRUE(u.warnings.empty()) << (u.warnings.empty() ? "" : u.warnings[0]);
+        EXPECT_EQ(u.pictures, 1);
+        ASSERT_TRUE(u.poc.has_value());
+        EXPECT_EQ(*u.poc, pics[i].expected_poc);
+        EXPECT_EQ(u.output, pics[i].output);
+        if (pics[i].clvs) sequence++;
+        EXPECT_EQ(u.sequence, std::max(sequence, 0));
+        ASSERT_EQ(u.fgc.size(), 1u);
+        EXPECT_TRUE(u.fgc[0].params.has_value()) << u.fgc[0].error;
+        EXPECT_EQ(u.fgc[0].payload, write_fgc_sei_payload(test_support::fgc_params_for(int(i)), FgcCodec::kVvc));
+    }
+}
+
+}  // namespace
+
+TEST(H266Poc, PictureHeaderUnitsAndInSliceHeadersWrapAndRestartAfterEndOfSequence) {
+    const std::vector<Pic> pics = {
+        {kIdr, 0, 0, true, 0, true, true},
+        {kTrail, 0, 8, true, 8},
+        {kTrail, 1, 4, false, 4},
+        {kTrail, 2, 2, false, 2},
+        {kTrail, 2, 6, true, 6},
+        {kTrail, 0, 0, false, 16},   // lsb wraps: msb 16
+        {kTrail, 1, 12, true, 12},   // 12 against prevTid0 16: same msb band below
+        {kTrail, 0, 8, false, 24},
+        {kTrail, 0, 15, true, 31},
+        {kTrail, 0, 6, false, 38},   // wraps again
+        // end of sequence: the CRA starts a new CLVS, its RASL picture is not output
+        {kCra, 0, 5, true, 5, true, true},
+        {kRasl, 0, 3, false, 3, false},
+        {kTrail, 0, 9, false, 9},
+    };
+    expect_scan(pics, build(pics, false, 10));
+}
+
+TEST(H266Poc, MsbCycleValueOverridesTheDerivation) {
+    std::vector<Pic> pics = {
+        {kIdr, 0, 0, true, 0, true, true},
+        {kTrail, 0, 4, false, 3 * 16 + 4, true, false, 3},
+        {kTrail, 0, 6, true, 3 * 16 + 6},  // derived from the previous POC 52
+    };
+    expect_scan(pics, build(pics, true, 99));
+}
+
+TEST(H266Poc, SliceWithoutAnyPictureHeaderIsAWarningNotACrash) {
+    std::vector<uint8_t> s;
+    append_nal(s, 15, 0, sps(false));
+    append_nal(s, 16, 0, pps());
+    BitWriter sl;
+    sl.flag(false);  // header not in the slice, and no PH unit came
+    sl.ue(3);
+    append_nal(s, kTrail, 0, sl);
+    const StreamScan scan = scan_stream(s.data(), s.size(), StreamCodec::kH266);
+    ASSERT_EQ(scan.units.size(), 1u);
+    EXPECT_FALSE(scan.units[0].warnings.empty());
+    EXPECT_FALSE(scan.units[0].poc.has_value());
+}
