@@ -90,6 +90,39 @@ TEST(DecodeH265, EqualsApplyWithExtractedParams) {
     fs::remove_all(dir);
 }
 
+// H.264: FFmpeg exports the seed as POC + (idr_pic_id << 5), RDD 5's pic_offset; two IDR
+// pictures (x264 numbers them 0 and 1) make the idr_pic_id term count. vtm seeds from the
+// POC alone and would see FFmpeg's idr_pic_id term (see cmd_decode.cpp), so rdd5 is the
+// flavour compared.
+TEST(DecodeH264, Rdd5EqualsApplyWithExtractedParamsAcrossTwoIdrs) {
+    const fs::path dir = fresh_test_dir("decode-h264");
+    write_synthetic_y4m(dir / "src.y4m", 160, 128, 12, 8);
+    ASSERT_TRUE(run_or_fail("x264 --quiet --preset ultrafast --bframes 2 --keyint 6 --min-keyint 6 --no-scenecut -o " +
+                            q(dir / "raw.264") + " " + q(dir / "src.y4m") + " 2>/dev/null"));
+    const auto stream = insert_sei(read_bytes(dir / "raw.264"), StreamCodec::kH264, [](int au) {
+        AccessUnitSei s;
+        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kAvc)}};
+        return s;
+    });
+    write_bytes(dir / "fgc.264", stream);
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --flavour rdd5 " + q(dir / "fgc.264") + " -o " + q(dir / "decoded.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(dir / "fgc.264") + " -o " + q(dir / "clean.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " params extract -q " + q(dir / "fgc.264") + " -o " + q(dir / "p.json")));
+    ASSERT_TRUE(run_or_fail(tool() + " apply -q --flavour rdd5 --size 160x128 --pix-fmt yuv420p -i " + q(dir / "clean.yuv") +
+                            " -p " + q(dir / "p.json") + " -o " + q(dir / "applied.yuv")));
+    const std::string params = [&] {
+        const auto b = read_bytes(dir / "p.json");
+        return std::string(b.begin(), b.end());
+    }();
+    EXPECT_NE(params.find("\"idr_pic_id\": 1"), std::string::npos) << "the stream should hold a second IDR";
+    const auto decoded = read_bytes(dir / "decoded.yuv"), applied = read_bytes(dir / "applied.yuv"),
+               clean = read_bytes(dir / "clean.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(12 * 160 * 128 * 3 / 2));
+    EXPECT_TRUE(decoded == applied) << "decode and apply differ";
+    EXPECT_NE(decoded, clean);
+    fs::remove_all(dir);
+}
+
 TEST(DecodeCli, MissingInputIsAnErrorWithoutOutput) {
     const fs::path dir = fresh_test_dir("decode-missing");
     std::string log;
