@@ -82,7 +82,12 @@ typedef struct fg_options {
                                  reference decoders output them) and fg_context_apply returns
                                  FG_OK with info->grain_applied = 0 and the reason in
                                  fg_last_error; 0: fg_context_apply fails */
-    int threads;              /* >= 0; 0 = all cores. Accepted; synthesis is single-threaded today */
+    int threads;              /* 0..256 workers per context, the calling thread included; 0 = all
+                                 hardware threads. Pictures are split into stripes (rdd5, vtm,
+                                 AV1, AFGS1); the output is identical for every count. vfgs runs
+                                 on the calling thread (its random state runs through the
+                                 picture in order). Threads start at the first picture with
+                                 grain and wait idle between pictures. */
     int coded_width;          /* vtm: the SPS coded luma size, which picks HM's block size; */
     int coded_height;         /*      0 = the picture size rounded up to a multiple of 16 */
     int vfgs_has_seed;        /* vfgs: 1 = start the LFSR from vfgs_seed (the reference's -r) */
@@ -170,8 +175,28 @@ FG_API fg_status fg_context_push_av1_params(fg_context* ctx, const fg_av1_params
  * slot frame_to_show_map_idx (0..7). */
 FG_API fg_status fg_context_show_existing_av1_frame(fg_context* ctx, int frame_to_show_map_idx);
 
-/* An AOM film grain synthesis 1 (AFGS1) ITU-T T.35 metadata payload. This build has no
- * AFGS1 parser: returns FG_ERROR_UNSUPPORTED. */
+/* An AOM film grain synthesis 1 (AFGS1) ITU-T T.35 metadata payload, as a decoder finds it
+ * in an AV1 metadata OBU (metadata_type 4) or an H.26x T.35 SEI: either starting with the
+ * T.35 header (country code 0xB5, provider code 0x5890, provider oriented code 0x01) or at
+ * av1_film_grain_param_sets() itself; the first byte tells which.
+ * The payload is parsed at once and updates the context's 8 stored parameter sets, which
+ * persist across payloads until fg_context_reset (a set with update_grain_flag = 0 takes a
+ * stored set with a new seed). The payload is for the next fg_context_apply only; that
+ * picture takes the set chosen by AFGS1 select_film_grain_param_set():
+ *   - sets whose subsampling fits the picture's chroma_format (a luma-only set fits any)
+ *     and, when the set signals one, whose bit depth equals the picture's bit_depth;
+ *   - among them the first whose resolution equals the picture's width x height (in the
+ *     set's apply_units_resolution_log2 units), else the largest not exceeding it (a 0x0
+ *     resolution fits any size);
+ *   - colour descriptions (CICP) the set signals are not compared (the context does not
+ *     know the picture's); the set's matrix_coefficients is used when signalled, else 2.
+ * That picture gets no grain (FG_OK, grain_applied = 0, the reason in fg_last_error) when
+ * no set fits, when afgs1_enable_flag = 0 or when the set has apply_grain_flag = 0; a
+ * picture with no payload pushed for it gets none either. info->seed replaces the set's
+ * grain_seed as for fg_context_push_av1_params. Several payloads before one picture: each
+ * updates the stored sets, the last one chooses. A truncated or malformed payload returns
+ * FG_ERROR_MALFORMED_PAYLOAD naming the syntax element, its value and the allowed range;
+ * the stored sets and any payload already waiting are then unchanged. */
 FG_API fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* payload, size_t size);
 
 /* One parameter set in the project's JSON form (see README "Parameter files"): an FGC SEI

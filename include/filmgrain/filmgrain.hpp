@@ -25,7 +25,11 @@ struct ContextOptions {
     // true: an invalid parameter set leaves pictures untouched and apply() reports why in
     // ApplyResult::message; false: apply() throws.
     bool passthrough_invalid = false;
-    int threads = 0;  // >= 0, 0 = all cores; synthesis is single-threaded today
+    // Stripe workers per context, including the calling thread: 0..256, 0 = every hardware
+    // thread. rdd5/vtm and AV1/AFGS1 split each picture into stripes; the output is the same
+    // for every count. vfgs runs on the calling thread (its reference's random state runs
+    // through the picture in order).
+    int threads = 0;
     // vtm: the SPS coded luma size (HM's block size choice); 0 = picture size rounded up to 16.
     int coded_width = 0;
     int coded_height = 0;
@@ -67,7 +71,9 @@ public:
     void receive_av1_params(const Av1FilmGrainParams& params, unsigned refresh_frame_flags = 0,
                             int matrix_coefficients = 2);
     void show_existing_av1_frame(int frame_to_show_map_idx);
-    // Throws Error(kUnsupported): this build has no AFGS1 parser.
+    // An AFGS1 ITU-T T.35 payload for the next picture applied, as fg_context_push_afgs1_t35
+    // (filmgrain.h) describes. Throws Error(kMalformedPayload) naming the syntax element;
+    // the context's stored sets are then unchanged.
     void receive_afgs1_t35(const uint8_t* payload, std::size_t size);
     // One FGC or AV1 parameter set in the project's JSON form.
     void receive_json(std::string_view json, FgcCodec codec = FgcCodec::kHevc,

@@ -80,7 +80,7 @@ filmgrain::ContextOptions to_options(const fg_options& o) {
         invalid(filmgrain::out_of_range_message("options.persistence", o.persistence, 0, 1));
     if (o.passthrough_invalid != 0 && o.passthrough_invalid != 1)
         invalid(filmgrain::out_of_range_message("options.passthrough_invalid", o.passthrough_invalid, 0, 1));
-    if (o.threads < 0) invalid(filmgrain::out_of_range_message("options.threads", o.threads, 0, 65536));
+    if (o.threads < 0 || o.threads > 256) invalid(filmgrain::out_of_range_message("options.threads", o.threads, 0, 256));
     if (o.coded_width < 0) invalid(filmgrain::out_of_range_message("options.coded_width", o.coded_width, 0, INT32_MAX));
     if (o.coded_height < 0)
         invalid(filmgrain::out_of_range_message("options.coded_height", o.coded_height, 0, INT32_MAX));

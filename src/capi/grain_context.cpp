@@ -1,7 +1,8 @@
 // GrainContext: the per-stream state behind both public APIs. It routes metadata to the
 // model it belongs to (FgcSynthesizer for rdd5/vtm, vfgs::Synthesizer, AV1 synthesis) and
 // keeps what a decoder would otherwise have to: SEIs waiting for their output picture,
-// AV1 reference slots, the picture count for callers that pass no ids.
+// AV1 reference slots, the AFGS1 stored parameter sets, the picture count for callers that
+// pass no ids.
 #include "filmgrain/filmgrain.hpp"
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "filmgrain/vfgs.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "metadata/fgc_sei.hpp"
 #include "metadata/params_file.hpp"
@@ -20,12 +22,17 @@ namespace filmgrain {
 
 namespace {
 
+// A stripe is 32 luma rows (AV1) or one block row (FGC): even an 8K picture has fewer
+// stripes than this, so more workers could never all be busy.
+constexpr int kMaxThreads = 256;
+
 void check_options(const ContextOptions& o) {
     const int flavour = static_cast<int>(o.flavour), persistence = static_cast<int>(o.persistence);
     if (flavour < 0 || flavour > 2) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("flavour", flavour, 0, 2));
     if (persistence < 0 || persistence > 1)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("persistence", persistence, 0, 1));
-    if (o.threads < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("threads", o.threads, 0, 1 << 16));
+    if (o.threads < 0 || o.threads > kMaxThreads)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("threads", o.threads, 0, kMaxThreads));
     if (o.coded_width < 0 || o.coded_height < 0)
         throw Error(ErrorCode::kInvalidArgument,
                     out_of_range_message(o.coded_width < 0 ? "coded_width" : "coded_height",
@@ -60,7 +67,7 @@ bool is_parameter_problem(ErrorCode code) {
 }  // namespace
 
 struct GrainContext::Impl {
-    enum class Model { kNone, kFgc, kAv1 };
+    enum class Model { kNone, kFgc, kAv1, kAfgs1 };
 
     ContextOptions options;
     Model model = Model::kNone;
@@ -76,6 +83,13 @@ struct GrainContext::Impl {
     capi::Av1ReferenceSlots slots;
     std::optional<Av1FilmGrainParams> av1;
     int av1_matrix_coefficients = 2;
+    // Made on first use: an FGC-only context starts no AV1 worker threads.
+    std::unique_ptr<av1::Av1Synthesizer> av1_synthesizer;
+
+    // AFGS1: the stored sets persist across payloads; a payload is for the next picture
+    // applied only (as `filmgrain apply --afgs1`: the metadata travels with its frame).
+    Afgs1Reader afgs1_reader;
+    std::optional<Afgs1Payload> afgs1_pending;
 
     explicit Impl(const ContextOptions& o) : options(o) { make_synthesizers(); }
 
@@ -92,6 +106,7 @@ struct GrainContext::Impl {
             fo.coded_width = options.coded_width;
             fo.coded_height = options.coded_height;
             fo.passthrough_invalid = options.passthrough_invalid;
+            fo.threads = options.threads;
             fgc = std::make_unique<FgcSynthesizer>(fo);
         }
         vfgs_invalid.clear();
@@ -155,11 +170,16 @@ struct GrainContext::Impl {
     bool vfgs_cancelled = false;
 
     ApplyResult apply_av1(const FrameView& src, const FrameView& dst, const FrameInfo& info) {
+        return apply_av1_params(*av1, av1_matrix_coefficients, src, dst, info);
+    }
+
+    ApplyResult apply_av1_params(Av1FilmGrainParams p, int matrix_coefficients, const FrameView& src,
+                                 const FrameView& dst, const FrameInfo& info) {
         ApplyResult r;
-        Av1FilmGrainParams p = *av1;
         if (info.seed) p.grain_seed = static_cast<int>(*info.seed & 0xFFFF);
+        if (!av1_synthesizer) av1_synthesizer = std::make_unique<av1::Av1Synthesizer>(options.threads);
         try {
-            av1::apply_film_grain(p, src, dst, av1_matrix_coefficients);
+            av1_synthesizer->apply(p, src, dst, matrix_coefficients);
         } catch (const Error& e) {
             if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
             copy_frame(src, dst);
@@ -169,6 +189,51 @@ struct GrainContext::Impl {
         r.grain_applied = p.apply_grain != 0 && (p.num_y_points > 0 || p.chroma_scaling_from_luma ||
                                                  p.num_cb_points > 0 || p.num_cr_points > 0);
         return r;
+    }
+
+    // AFGS1 7.3: the picture takes the set signalled for its size, subsampling and bit
+    // depth. The context knows nothing of the picture's colour description, so sets match
+    // whatever CICP values they signal (Afgs1Picture's "unknown").
+    ApplyResult apply_afgs1(const FrameView& src, const FrameView& dst, const FrameInfo& info) {
+        ApplyResult r;
+        if (!afgs1_pending) {
+            copy_frame(src, dst);
+            r.message = "film grain not applied: no AFGS1 payload arrived for this picture";
+            return r;
+        }
+        const Afgs1Payload payload = std::move(*afgs1_pending);
+        afgs1_pending.reset();
+        Afgs1Picture pic;
+        pic.width = src.width;
+        pic.height = src.height;
+        pic.format = src.format;
+        pic.bit_depth = src.bit_depth;
+        const std::optional<Afgs1Selection> sel = select_afgs1_set(payload, pic);
+        if (!sel) {
+            copy_frame(src, dst);
+            r.message = payload.afgs1_enable_flag
+                            ? "film grain not applied: no parameter set of the AFGS1 payload fits a " +
+                                  std::to_string(src.width) + "x" + std::to_string(src.height) + " " +
+                                  std::to_string(src.bit_depth) + "-bit " + chroma_format_label(src.format) + " picture"
+                            : "film grain not applied: afgs1_enable_flag = 0";
+            return r;
+        }
+        ApplyResult applied = apply_av1_params(sel->params, sel->matrix_coefficients, src, dst, info);
+        if (!sel->params.apply_grain && applied.message.empty())
+            applied.message = "film grain not applied: the selected AFGS1 set (film_grain_param_set_idx " +
+                              std::to_string(payload.sets[sel->set_index].film_grain_param_set_idx) +
+                              ") has apply_grain_flag = 0";
+        return applied;
+    }
+
+    static std::string chroma_format_label(ChromaFormat f) {
+        switch (f) {
+        case ChromaFormat::k400: return "4:0:0";
+        case ChromaFormat::k420: return "4:2:0";
+        case ChromaFormat::k422: return "4:2:2";
+        case ChromaFormat::k444: return "4:4:4";
+        }
+        return "?";
     }
 };
 
@@ -213,10 +278,17 @@ void GrainContext::show_existing_av1_frame(int frame_to_show_map_idx) {
     impl_->model = Impl::Model::kAv1;
 }
 
-void GrainContext::receive_afgs1_t35(const uint8_t*, std::size_t) {
-    throw Error(ErrorCode::kUnsupported,
-                "AFGS1 T.35 payloads: this build has no AFGS1 parser; convert the payload to AV1 film grain "
-                "parameters and use the AV1 entry point");
+void GrainContext::receive_afgs1_t35(const uint8_t* payload, std::size_t size) {
+    if (!payload && size) throw Error(ErrorCode::kInvalidArgument, "payload is NULL with size " + std::to_string(size));
+    if (!payload || size == 0)
+        throw Error(ErrorCode::kMalformedPayload, "AFGS1 payload: empty (0 bytes; at least 1 is needed)");
+    // A bare av1_film_grain_param_sets() cannot start with the country code 0xB5 (its
+    // reserved bits are 0), so both forms decoders hand over are told apart by the first byte.
+    // The reader leaves its stored sets untouched when it throws: a damaged payload is as
+    // if it never arrived.
+    Afgs1Payload parsed = impl_->afgs1_reader.receive(payload, size, afgs1_has_t35_header(payload, size));
+    impl_->afgs1_pending = std::move(parsed);
+    impl_->model = Impl::Model::kAfgs1;
 }
 
 void GrainContext::receive_json(std::string_view text, FgcCodec codec, std::optional<FgcPictureIds> picture) {
@@ -246,6 +318,8 @@ void GrainContext::reset() {
     s.pending.clear();
     s.slots.clear();
     s.av1.reset();
+    s.afgs1_reader = Afgs1Reader{};
+    s.afgs1_pending.reset();
     s.model = Impl::Model::kNone;
     s.pictures_applied = 0;
     s.vfgs_cancelled = false;
@@ -264,6 +338,7 @@ ApplyResult GrainContext::apply(const FrameView& src, const FrameView& dst, cons
     case Impl::Model::kNone: copy_frame(src, dst); break;
     case Impl::Model::kFgc: r = s.apply_fgc(src, dst, fi); break;
     case Impl::Model::kAv1: r = s.apply_av1(src, dst, fi); break;
+    case Impl::Model::kAfgs1: r = s.apply_afgs1(src, dst, fi); break;
     }
     s.pictures_applied++;
     return r;

@@ -8,6 +8,11 @@
 
 #include "capi_test_support.h"
 
+/* capi_afgs1_threads_tests.c */
+void test_afgs1_payloads(void);
+void test_afgs1_errors(void);
+void test_thread_counts(void);
+
 static const char* const kModels[] = {"rdd5", "vtm", "vfgs", "av1"};
 
 /* Picture formats each model's reference handles (others are refused with a message):
@@ -208,6 +213,10 @@ static void test_errors(void) {
     CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(msg, "threads") != NULL);
     fg_options_init(&o);
+    o.threads = 257;
+    CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(msg, "threads") && strstr(msg, "257") && strstr(msg, "256"));
+    fg_options_init(&o);
     o.persistence = 2;
     CHECK(fg_context_create(&o, &ctx, msg, sizeof msg) == FG_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(msg, "persistence") != NULL);
@@ -285,7 +294,12 @@ static void test_errors(void) {
     CHECK_STATUS(ctx, fg_context_push_fgc_sei(ctx, truncated, sizeof truncated, FG_CODEC_HEVC, NULL),
                  FG_ERROR_MALFORMED_PAYLOAD, NULL);
     CHECK(strlen(fg_last_error(ctx)) > 0);
-    CHECK_STATUS(ctx, fg_context_push_afgs1_t35(ctx, truncated, sizeof truncated), FG_ERROR_UNSUPPORTED, "AFGS1");
+    /* 0x80: a bare av1_film_grain_param_sets() (no T.35 header) announcing one set, then the
+     * payload ends; 0x00 is complete (afgs1_enable_flag = 0: no grain) */
+    const uint8_t afgs1_truncated[1] = {0x80};
+    CHECK_STATUS(ctx, fg_context_push_afgs1_t35(ctx, afgs1_truncated, sizeof afgs1_truncated),
+                 FG_ERROR_MALFORMED_PAYLOAD, "truncated");
+    CHECK_STATUS(ctx, fg_context_push_afgs1_t35(ctx, truncated, sizeof truncated), FG_OK, NULL);
     CHECK_STATUS(ctx, fg_context_show_existing_av1_frame(ctx, 9), FG_ERROR_INVALID_ARGUMENT, "frame_to_show_map_idx");
     CHECK_STATUS(ctx, fg_context_show_existing_av1_frame(ctx, 2), FG_ERROR_INVALID_PARAMS, "frame_to_show_map_idx");
 
@@ -550,6 +564,9 @@ static const named_test kTests[] = {
     {"av1_reference_slots", test_av1_reference_slots},
     {"concurrency", test_concurrency},
     {"version", test_version},
+    {"afgs1_payloads", test_afgs1_payloads},
+    {"afgs1_errors", test_afgs1_errors},
+    {"thread_counts", test_thread_counts},
 };
 
 int main(int argc, char** argv) {

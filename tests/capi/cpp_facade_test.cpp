@@ -11,6 +11,8 @@
 #include "conformance_case.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
+#include "metadata/afgs1.hpp"
+#include "metadata/av1_params_json.hpp"
 
 using namespace filmgrain;
 
@@ -136,6 +138,70 @@ TEST(CppFacade, JsonParameterSetsReproduceGoldens) {
     for (const char* name : {"av1_tv01_352x288_420p10", "av1_tbl_mono_176x144_gray", "rdd5_352x288_420p8_rand",
                              "rdd5_h264_352x288_420p8_idr", "vtm_352x288_420p8_invalid_mix"})
         run_case_through_json(name);
+}
+
+// The same cases' AV1 parameter sets sent as AFGS1 payloads written by the project's
+// writer, one per picture (alternately with and without the T.35 header), each set aimed at
+// the case's picture: the goldens must come out of receive_afgs1_t35 as they do of the
+// frame-header path.
+TEST(CppFacade, Afgs1PayloadsReproduceAv1Goldens) {
+    for (const char* name : {"av1_tv01_352x288_420p10", "av1_tbl_mono_176x144_gray", "av1_tbl_352x288_422p8"}) {
+        const filmgrain::test_support::ConformanceCase c = filmgrain::test_support::load_case(name);
+        ASSERT_GT(c.frames, 1) << name;
+        GrainContext ctx;
+        for (int k = 0; k < c.frames; k++) {
+            const std::vector<Av1FrameParams> fp = av1_frame_params_from_json(c.frame_info(k).at("params"));
+            ASSERT_EQ(fp.size(), 1u);
+            Afgs1ParamSet set;
+            set.params = fp[0].grain;
+            set.params.update_grain = 1;
+            set.params.film_grain_params_ref_idx = 0;
+            Afgs1SetTarget& t = set.target;
+            t.apply_horz_resolution = c.width;
+            t.apply_vert_resolution = c.height;
+            t.luma_only_flag = c.format.chroma == ChromaFormat::k400;
+            t.subsampling_x = t.luma_only_flag ? 0 : chroma_shift_x(c.format.chroma);
+            t.subsampling_y = t.luma_only_flag ? 0 : chroma_shift_y(c.format.chroma);
+            t.video_signal_characteristics_flag = 1;
+            t.bit_depth_minus8 = c.format.bit_depth - 8;
+            const int mc = fp[0].color ? fp[0].color->matrix_coefficients : 2;
+            if (mc != 2) {
+                t.cicp_info_present_flag = 1;
+                t.matrix_coefficients = mc;
+            }
+            if (t.luma_only_flag) {
+                // A luma-only set carries no chroma scaling; the picture has no chroma to take it.
+                set.params.num_cb_points = set.params.num_cr_points = 0;
+                set.params.chroma_scaling_from_luma = 0;
+            }
+            Afgs1Payload payload;
+            payload.sets.push_back(set);
+            Afgs1WriteOptions wo;
+            wo.t35_header = k % 2 == 0;
+            const std::vector<uint8_t> bytes = write_afgs1(payload, wo);
+            ctx.receive_afgs1_t35(bytes.data(), bytes.size());
+            FrameBuffer in = c.input_frame(k), out(c.width, c.height, c.format);
+            ctx.apply(in.view(), out.view());
+            EXPECT_EQ(md5_hex(out.bytes(), out.byte_size()), c.expected_md5(k)) << name << " frame " << k;
+        }
+    }
+}
+
+TEST(CppFacade, DamagedAfgs1PayloadIsAnErrorNamingTheElement) {
+    GrainContext ctx;
+    const uint8_t other_provider[] = {0xB5, 0x00, 0x31, 0x01, 0x80};
+    try {
+        ctx.receive_afgs1_t35(other_provider, sizeof other_provider);
+        FAIL() << "no exception";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kMalformedPayload);
+        EXPECT_NE(std::string(e.what()).find("itu_t_t35_terminal_provider_code = 49"), std::string::npos) << e.what();
+    }
+    FrameBuffer a = test_picture();
+    const std::string clean = md5_hex(a.bytes(), a.byte_size());
+    const ApplyResult r = ctx.apply(a.view(), a.view());
+    EXPECT_FALSE(r.grain_applied);
+    EXPECT_EQ(md5_hex(a.bytes(), a.byte_size()), clean);
 }
 
 }  // namespace
