@@ -4,6 +4,7 @@
 #include <fstream>
 #include <memory>
 
+#include "bitstream/av1_afgs1_extraction.hpp"
 #include "bitstream/stream_report.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "cli_common.hpp"
@@ -57,11 +58,26 @@ void write_file_atomically(const std::string& path, const std::string& text) {
     }
 }
 
+// AV1: the frames' parameters from the stream's AFGS1 metadata, in the AV1 per-frame form.
+int run_extract_av1(const InspectOptions& o, const bitstream::StreamScan& s, std::vector<std::string>& warnings) {
+    const std::vector<Av1FrameParams> frames = bitstream::av1_params_from_afgs1(s, warnings);
+    if (!o.quiet)
+        for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
+    write_file_atomically(o.output, av1_frame_params_to_json(frames).dump(1) + "\n");
+    int with_grain = 0;
+    for (const auto& f : frames) with_grain += f.grain.apply_grain != 0;
+    if (!o.quiet && o.output != "-")
+        std::fprintf(stderr, "filmgrain: %zu frame(s), %d with AFGS1 film grain, written to %s\n", frames.size(),
+                     with_grain, o.output.c_str());
+    return 0;
+}
+
 int run_extract(const InspectOptions& o) {
     const bitstream::StreamScan s = scan(o);
     std::vector<std::string> warnings;
     for (const auto& u : s.units)
         for (const auto& w : u.warnings) warnings.push_back("unit " + std::to_string(u.index) + ": " + w);
+    if (s.codec == bitstream::StreamCodec::kAv1) return run_extract_av1(o, s, warnings);
     const ParamsFile f = bitstream::params_file_from_scan(s, warnings);
     if (!o.quiet)
         for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
@@ -99,7 +115,9 @@ void register_inspect(CLI::App& app) {
         params->require_subcommand(1);
     }
     CLI::App* extract = params->add_subcommand(
-        "extract", "write the per-frame parameter file (output order, POC, FGC SEI) that `apply --params` reads");
+        "extract",
+        "write the per-frame parameter file `apply --params` reads: H.26x FGC SEI in output order with POC, AV1 "
+        "AFGS1 metadata as per-frame AV1 parameters");
     add_stream_options(extract, e.get());
     extract->add_option("--output,-o", e->output, "parameter file to write, - for stdout")->required();
     extract->add_flag("--quiet,-q", e->quiet, "no messages on stderr except errors");

@@ -55,6 +55,16 @@ json stream_scan_to_json(const StreamScan& scan) {
         if (scan.codec != StreamCodec::kAv1) j["sequence"] = u.sequence;
         j["output"] = u.output;
         if (u.pts) j["pts"] = *u.pts;
+        if (const auto& h = u.av1_sequence_header)
+            j["sequence_header"] = json{{"seq_profile", h->seq_profile},
+                                        {"max_frame_width", h->max_frame_width},
+                                        {"max_frame_height", h->max_frame_height},
+                                        {"bit_depth", h->bit_depth},
+                                        {"mono_chrome", h->mono_chrome},
+                                        {"subsampling_x", h->subsampling_x},
+                                        {"subsampling_y", h->subsampling_y},
+                                        {"matrix_coefficients", h->matrix_coefficients},
+                                        {"film_grain_params_present", h->film_grain_params_present}};
         json fgc = json::array();
         for (const FoundFgc& f : u.fgc) {
             json e{{"suffix", f.suffix}, {"size", f.payload.size()}};
@@ -92,6 +102,15 @@ std::string stream_scan_to_text(const StreamScan& scan) {
         if (u.pts) s += " pts=" + std::to_string(*u.pts);
         if (!u.output) s += " (not output)";
         s += "\n";
+        if (const auto& h = u.av1_sequence_header)
+            s += "  sequence header: profile " + std::to_string(h->seq_profile) + ", " +
+                 std::to_string(h->max_frame_width) + "x" + std::to_string(h->max_frame_height) + ", " +
+                 std::to_string(h->bit_depth) + "-bit, " +
+                 (h->mono_chrome ? std::string("4:0:0")
+                                 : h->subsampling_y ? std::string("4:2:0")
+                                 : h->subsampling_x ? std::string("4:2:2")
+                                                    : std::string("4:4:4")) +
+                 ", film_grain_params_present " + std::to_string(h->film_grain_params_present) + "\n";
         for (const FoundFgc& f : u.fgc) {
             fgc++;
             s += std::string("  FGC SEI (") + (f.suffix ? "suffix" : "prefix") + ", " + std::to_string(f.payload.size()) +
@@ -115,8 +134,8 @@ std::string stream_scan_to_text(const StreamScan& scan) {
 ParamsFile params_file_from_scan(const StreamScan& scan, std::vector<std::string>& warnings) {
     if (scan.codec == StreamCodec::kAv1)
         throw Error(ErrorCode::kUnsupported,
-                    "AV1 streams: film grain parameters come from frame headers or AFGS1 T.35 payloads, which "
-                    "`params extract` does not convert yet (use `filmgrain decode`, or `inspect` for the raw payloads)");
+                    "AV1 streams: film grain parameters are AV1 sets (AFGS1 metadata or frame headers), not FGC "
+                    "SEIs; use av1_params_from_afgs1");
     ParamsFile f;
     f.per_frame = true;
     for (const AccessUnit* u : units_in_output_order(scan)) {

@@ -188,6 +188,14 @@ StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
         au.nal_units = int(tu.obus.size());
         for (const Av1Obu& obu : tu.obus) {
             if (obu.type == kObuFrame || obu.type == kObuFrameHeader) au.pictures++;
+            if (obu.type == kObuSequenceHeader) {
+                try {
+                    au.av1_sequence_header = parse_av1_sequence_header(obu.payload);
+                } catch (const Error& e) {
+                    au.warnings.push_back("sequence header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
+                }
+                continue;
+            }
             std::vector<uint8_t> t35;
             std::string warning;
             if (av1_metadata_t35(obu, t35, &warning)) {

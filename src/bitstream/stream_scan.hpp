@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bitstream/av1_obu.hpp"
+#include "bitstream/av1_sequence_header.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "filmgrain/fgc_params.hpp"
 
@@ -47,6 +48,7 @@ struct AccessUnit {
     int pictures = 0;         // VCL NAL units starting a picture, or frame/frame-header OBUs
     std::vector<FoundFgc> fgc;
     std::vector<FoundT35> t35;
+    std::optional<Av1SequenceHeader> av1_sequence_header;  // AV1: the last one in this unit
     std::vector<std::string> warnings;
 };
 

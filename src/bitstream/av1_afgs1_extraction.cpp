@@ -1,0 +1,115 @@
+#include "bitstream/av1_afgs1_extraction.hpp"
+
+#include <optional>
+
+#include "filmgrain/error.hpp"
+#include "metadata/afgs1.hpp"
+
+namespace filmgrain::bitstream {
+namespace {
+
+ChromaFormat chroma_of(const Av1SequenceHeader& h) {
+    if (h.mono_chrome) return ChromaFormat::k400;
+    if (h.subsampling_x && h.subsampling_y) return ChromaFormat::k420;
+    return h.subsampling_x ? ChromaFormat::k422 : ChromaFormat::k444;
+}
+
+Afgs1Picture picture_of(const Av1SequenceHeader& h) {
+    Afgs1Picture p;
+    p.width = h.max_frame_width;
+    p.height = h.max_frame_height;
+    p.format = chroma_of(h);
+    p.bit_depth = h.bit_depth;
+    // Without a colour description the values are "unspecified": unknown to the
+    // selection, which then matches any signalled CICP.
+    if (h.color_description_present_flag) {
+        p.color_primaries = h.color_primaries;
+        p.transfer_characteristics = h.transfer_characteristics;
+        p.matrix_coefficients = h.matrix_coefficients;
+    }
+    p.video_full_range_flag = h.color_range;
+    return p;
+}
+
+Av1ColorInfo color_of(const Av1SequenceHeader& h, int matrix_coefficients) {
+    Av1ColorInfo c;
+    c.bit_depth = h.bit_depth;
+    c.mono_chrome = h.mono_chrome;
+    c.subsampling_x = h.subsampling_x;
+    c.subsampling_y = h.subsampling_y;
+    c.matrix_coefficients = matrix_coefficients;
+    return c;
+}
+
+// The T.35 bytes from the country code on, as AFGS1's metadata_aom_itu_t_t35() starts.
+std::vector<uint8_t> t35_bytes(const T35Payload& t) {
+    std::vector<uint8_t> b{uint8_t(t.country_code)};
+    if (t.country_code == 0xFF) b.push_back(uint8_t(t.country_code_extension));
+    b.insert(b.end(), t.bytes.begin(), t.bytes.end());
+    return b;
+}
+
+}  // namespace
+
+std::vector<Av1FrameParams> av1_params_from_afgs1(const StreamScan& scan, std::vector<std::string>& warnings) {
+    if (scan.codec != StreamCodec::kAv1)
+        throw Error(ErrorCode::kInvalidArgument, "AFGS1 extraction needs an AV1 stream, not " +
+                                                     std::string(stream_codec_name(scan.codec)));
+    if (scan.units.empty()) throw Error(ErrorCode::kMalformedPayload, "the stream holds no temporal unit");
+    bool any_afgs1 = false, frame_header_grain = false;
+    for (const AccessUnit& u : scan.units) {
+        for (const FoundT35& t : u.t35) any_afgs1 |= is_afgs1_t35(t.t35);
+        if (u.av1_sequence_header) frame_header_grain |= u.av1_sequence_header->film_grain_params_present != 0;
+    }
+    if (!any_afgs1 && frame_header_grain)
+        throw Error(ErrorCode::kUnsupported,
+                    "this AV1 stream carries its film grain in the frame headers (sequence header "
+                    "film_grain_params_present = 1) and no AFGS1 metadata; `params extract` reads AFGS1 T.35 "
+                    "metadata only. `filmgrain decode` applies frame-header grain (through libdav1d / libaom)");
+    if (!any_afgs1) warnings.push_back("no AFGS1 metadata and no film grain in the frame headers: no frame has grain");
+    if (any_afgs1 && frame_header_grain)
+        warnings.push_back("the frame headers also carry film grain (film_grain_params_present = 1); only the AFGS1 "
+                           "metadata is extracted");
+
+    Afgs1Reader reader;
+    std::optional<Av1SequenceHeader> sequence;
+    std::vector<Av1FrameParams> frames;
+    for (const AccessUnit& u : scan.units) {
+        const std::string where = "TU " + std::to_string(u.index) + ": ";
+        if (u.av1_sequence_header) sequence = u.av1_sequence_header;
+        std::optional<Afgs1Payload> payload;
+        for (const FoundT35& t : u.t35) {
+            if (!is_afgs1_t35(t.t35)) continue;
+            if (payload) warnings.push_back(where + "more than one AFGS1 payload; each updates the stored sets, the "
+                                                    "last one chooses the frame's set");
+            const std::vector<uint8_t> bytes = t35_bytes(t.t35);
+            try {
+                payload = reader.receive(bytes, true);
+            } catch (const Error& e) {
+                warnings.push_back(where + "AFGS1 payload skipped: " + e.what());
+            }
+        }
+        Av1FrameParams f;  // apply_grain = 0
+        if (sequence) f.color = color_of(*sequence, sequence->matrix_coefficients);
+        if (payload) {
+            if (!sequence) {
+                warnings.push_back(where + "AFGS1 payload before any sequence header: the picture format is "
+                                           "unknown, no set is selected");
+            } else if (const auto sel = select_afgs1_set(*payload, picture_of(*sequence))) {
+                f.grain = sel->params;
+                f.grain.update_grain = 1;
+                f.grain.film_grain_params_ref_idx = 0;
+                f.color = color_of(*sequence, sel->matrix_coefficients);
+            } else if (payload->afgs1_enable_flag) {
+                warnings.push_back(where + "no set of the AFGS1 payload fits the " +
+                                   std::to_string(sequence->max_frame_width) + "x" +
+                                   std::to_string(sequence->max_frame_height) + " " +
+                                   std::to_string(sequence->bit_depth) + "-bit picture");
+            }
+        }
+        frames.push_back(f);
+    }
+    return frames;
+}
+
+}  // namespace filmgrain::bitstream

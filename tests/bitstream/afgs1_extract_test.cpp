@@ -1,0 +1,230 @@
+// `filmgrain params extract` on AV1 streams: aomenc output with AFGS1 T.35 metadata OBUs
+// inserted (payloads from the project's AFGS1 writer). The per-frame JSON must hold the set
+// each frame's payload selects for the coded picture, and `apply --params` with it must
+// equal `apply --afgs1` with the same payloads. Streams whose grain is in the frame headers
+// only are refused with a message pointing at `decode`.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "bitstream/av1_afgs1_extraction.hpp"
+#include "bitstream/av1_sequence_header.hpp"
+#include "bitstream/metadata_insertion.hpp"
+#include "bitstream/stream_scan.hpp"
+#include "metadata/afgs1.hpp"
+#include "metadata/av1_params_json.hpp"
+#include "stream_fixtures.hpp"
+
+using namespace filmgrain;
+using namespace filmgrain::bitstream;
+using namespace filmgrain::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kWidth = 96, kHeight = 64, kFrames = 6;
+
+std::string tool() { return std::string("'") + FILMGRAIN_TOOL_PATH + "'"; }
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// A set for frame k: values depend on k so each frame's parameters are recognisable.
+Av1FilmGrainParams params_for(int k) {
+    Av1FilmGrainParams p;
+    p.apply_grain = 1;
+    p.grain_seed = 1000 + 37 * k;
+    p.num_y_points = 2;
+    p.point_y_value[0] = 0;
+    p.point_y_scaling[0] = 40 + 8 * k;
+    p.point_y_value[1] = 255;
+    p.point_y_scaling[1] = 90 - 5 * k;
+    p.num_cb_points = 1;
+    p.point_cb_value[0] = 128;
+    p.point_cb_scaling[0] = 30 + k;
+    p.num_cr_points = 2;
+    p.point_cr_value[0] = 20;
+    p.point_cr_scaling[0] = 25;
+    p.point_cr_value[1] = 230;
+    p.point_cr_scaling[1] = 45 + 2 * k;
+    p.grain_scaling_minus_8 = k % 4;
+    p.ar_coeff_lag = 1 + k % 3;
+    for (int i = 0; i < p.num_pos_luma(); i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i * 5 + k) % 17 - 8;
+    for (int i = 0; i < p.num_pos_chroma(); i++) {
+        p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i * 3 + k) % 11 - 5;
+        p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i * 7 + k) % 13 + 6;
+    }
+    p.ar_coeff_shift_minus_6 = k % 2;
+    p.cb_mult = 128 + k;
+    p.cr_offset = 250 + k;
+    p.overlap_flag = k % 2;
+    return p;
+}
+
+Afgs1SetTarget target(int width, int height, int bit_depth) {
+    Afgs1SetTarget t;
+    t.apply_horz_resolution = width;
+    t.apply_vert_resolution = height;
+    t.video_signal_characteristics_flag = 1;
+    t.bit_depth_minus8 = bit_depth - 8;
+    return t;
+}
+
+// What each temporal unit carries, and which parameters its frame must get:
+//   0, 1, 2, 5: two sets, one for the coded picture (index 0, params_for(k)) and one for a
+//               half-size picture (index 1), in alternating order;
+//   3: set 0 again with update_grain_flag = 0 and a new seed (the stored set of TU 2);
+//   4: no payload (no grain).
+struct Fixture {
+    std::vector<std::vector<uint8_t>> payloads;  // per TU, empty = none
+    std::vector<Av1FilmGrainParams> expected;    // per frame
+};
+
+Fixture make_fixture(int bit_depth) {
+    Fixture f;
+    for (int k = 0; k < kFrames; k++) {
+        Afgs1Payload pl;
+        Av1FilmGrainParams want;  // apply_grain = 0
+        if (k == 3) {
+            Afgs1ParamSet reseed;
+            reseed.film_grain_param_set_idx = 0;
+            reseed.params = params_for(2);
+            reseed.params.update_grain = 0;
+            reseed.params.grain_seed = 4321;
+            reseed.target = target(kWidth, kHeight, bit_depth);
+            pl.sets = {reseed};
+            want = params_for(2);
+            want.grain_seed = 4321;
+        } else if (k != 4) {
+            Afgs1ParamSet full, half;
+            full.film_grain_param_set_idx = 0;
+            full.params = params_for(k);
+            full.target = target(kWidth, kHeight, bit_depth);
+            half.film_grain_param_set_idx = 1;
+            half.params = params_for(k + 10);
+            half.target = target(kWidth / 2, kHeight / 2, bit_depth);
+            pl.sets = k % 2 ? std::vector<Afgs1ParamSet>{half, full} : std::vector<Afgs1ParamSet>{full, half};
+            want = params_for(k);
+        }
+        f.payloads.push_back(pl.sets.empty() ? std::vector<uint8_t>{} : write_afgs1(pl));
+        f.expected.push_back(want);
+    }
+    return f;
+}
+
+std::vector<uint8_t> with_payloads(const std::vector<uint8_t>& stream, const Fixture& f) {
+    return insert_av1_t35(stream, [&](int tu) {
+        std::vector<std::vector<uint8_t>> out;
+        if (tu < kFrames && !f.payloads[std::size_t(tu)].empty()) out.push_back(f.payloads[std::size_t(tu)]);
+        return out;
+    });
+}
+
+void expect_frames(const std::vector<Av1FrameParams>& got, const Fixture& f, int bit_depth) {
+    ASSERT_EQ(got.size(), std::size_t(kFrames));
+    for (int k = 0; k < kFrames; k++) {
+        SCOPED_TRACE("frame " + std::to_string(k));
+        if (f.expected[std::size_t(k)].apply_grain) {
+            EXPECT_EQ(got[std::size_t(k)].grain, f.expected[std::size_t(k)]);
+        } else {
+            EXPECT_EQ(got[std::size_t(k)].grain.apply_grain, 0);
+        }
+        ASSERT_TRUE(got[std::size_t(k)].color.has_value());
+        EXPECT_EQ(got[std::size_t(k)].color->bit_depth, bit_depth);
+        EXPECT_EQ(got[std::size_t(k)].color->subsampling_x, 1);
+        EXPECT_EQ(got[std::size_t(k)].color->subsampling_y, 1);
+    }
+}
+
+struct EncodedAv1 {
+    std::string container;  // aomenc option: --ivf or --obu
+    int bit_depth;
+};
+
+class ExtractAfgs1 : public ::testing::TestWithParam<EncodedAv1> {};
+
+}  // namespace
+
+TEST_P(ExtractAfgs1, JsonHoldsEachFramesSelectedSetAndAppliesAsThePayloads) {
+    const EncodedAv1 c = GetParam();
+    const fs::path dir = fresh_test_dir("afgs1-extract" + c.container.substr(2) + std::to_string(c.bit_depth));
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, c.bit_depth);
+    const std::string depth = c.bit_depth > 8 ? " --bit-depth=10 --input-bit-depth=10" : "";
+    ASSERT_TRUE(run_or_fail("aomenc --quiet " + c.container + " --limit=" + std::to_string(kFrames) +
+                            " --cpu-used=6" + depth + " -o " + q(dir / "raw.bin") + " " + q(dir / "src.y4m")));
+    const Fixture f = make_fixture(c.bit_depth);
+    const std::vector<uint8_t> stream = with_payloads(read_bytes(dir / "raw.bin"), f);
+    write_bytes(dir / "afgs1.obu", stream);
+
+    // the library: sequence header facts and the selected sets
+    const StreamScan scan = scan_stream(stream.data(), stream.size(), StreamCodec::kAv1);
+    ASSERT_EQ(scan.units.size(), std::size_t(kFrames));
+    ASSERT_TRUE(scan.units[0].av1_sequence_header.has_value());
+    const Av1SequenceHeader& sh = *scan.units[0].av1_sequence_header;
+    EXPECT_EQ(sh.max_frame_width, kWidth);
+    EXPECT_EQ(sh.max_frame_height, kHeight);
+    EXPECT_EQ(sh.bit_depth, c.bit_depth);
+    EXPECT_EQ(sh.mono_chrome, 0);
+    EXPECT_EQ(sh.film_grain_params_present, 0);
+    std::vector<std::string> warnings;
+    expect_frames(av1_params_from_afgs1(scan, warnings), f, c.bit_depth);
+    EXPECT_TRUE(warnings.empty()) << warnings[0];
+
+    // the command: the JSON file holds the same, and applies as the payloads do
+    ASSERT_TRUE(run_or_fail(tool() + " params extract -q " + q(dir / "afgs1.obu") + " -o " + q(dir / "params.json")));
+    const std::vector<uint8_t> text = read_bytes(dir / "params.json");
+    expect_frames(av1_frame_params_from_json(nlohmann::json::parse(text.begin(), text.end())), f, c.bit_depth);
+    for (int k = 0; k < kFrames; k++)
+        if (!f.payloads[std::size_t(k)].empty())
+            write_bytes(dir / ("tu" + std::to_string(k) + ".bin"), f.payloads[std::size_t(k)]);
+    ASSERT_TRUE(run_or_fail(tool() + " apply -q -i " + q(dir / "src.y4m") + " -o " + q(dir / "from_json.y4m") +
+                            " --params " + q(dir / "params.json")));
+    ASSERT_TRUE(run_or_fail(tool() + " apply -q -i " + q(dir / "src.y4m") + " -o " + q(dir / "from_afgs1.y4m") +
+                            " --afgs1 " + q(dir / "tu%d.bin")));
+    const std::vector<uint8_t> a = read_bytes(dir / "from_json.y4m"), b = read_bytes(dir / "from_afgs1.y4m");
+    ASSERT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << "apply --params (extracted) differs from apply --afgs1";
+    EXPECT_NE(a, read_bytes(dir / "src.y4m"));
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Aomenc, ExtractAfgs1,
+                         ::testing::Values(EncodedAv1{"--ivf", 8}, EncodedAv1{"--obu", 10}),
+                         [](const auto& info) {
+                             return info.param.container.substr(2) + "_" + std::to_string(info.param.bit_depth) + "bit";
+                         });
+
+TEST(ExtractAfgs1, DamagedPayloadIsAWarningAndTheFrameGetsNoGrain) {
+    const fs::path dir = fresh_test_dir("afgs1-extract-damaged");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=" + std::to_string(kFrames) + " --cpu-used=6 -o " +
+                            q(dir / "raw.ivf") + " " + q(dir / "src.y4m")));
+    Fixture f = make_fixture(8);
+    f.payloads[1].resize(f.payloads[1].size() / 2);  // truncated
+    const std::vector<uint8_t> stream = with_payloads(read_bytes(dir / "raw.ivf"), f);
+    const StreamScan scan = scan_stream(stream.data(), stream.size(), StreamCodec::kAv1);
+    std::vector<std::string> warnings;
+    const std::vector<Av1FrameParams> frames = av1_params_from_afgs1(scan, warnings);
+    ASSERT_EQ(frames.size(), std::size_t(kFrames));
+    EXPECT_EQ(frames[1].grain.apply_grain, 0);
+    EXPECT_EQ(frames[0].grain, f.expected[0]);
+    EXPECT_EQ(frames[2].grain, f.expected[2]);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("TU 1"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("truncated"), std::string::npos) << warnings[0];
+    fs::remove_all(dir);
+}
+
+TEST(ExtractAfgs1, FrameHeaderGrainIsRefusedPointingAtDecode) {
+    const fs::path dir = fresh_test_dir("afgs1-extract-frame-headers");
+    write_synthetic_y4m(dir / "src.y4m", 64, 64, 2, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=2 --cpu-used=6 --film-grain-test=3 -o " + q(dir / "g.ivf") +
+                            " " + q(dir / "src.y4m")));
+    const std::string cmd = tool() + " params extract " + q(dir / "g.ivf") + " -o " + q(dir / "p.json") + " 2> " +
+                            q(dir / "err.txt");
+    EXPECT_NE(std::system(cmd.c_str()), 0);
+    EXPECT_FALSE(fs::exists(dir / "p.json"));
+    const std::vector<uint8_t> err = read_bytes(dir / "err.txt");
+    const std::string message(err.begin(), err.end());
+    EXPECT_NE(message.find("frame headers"), std::string::npos) << message;
+    EXPECT_NE(message.find("filmgrain decode"), std::string::npos) << message;
+    fs::remove_all(dir);
+}
