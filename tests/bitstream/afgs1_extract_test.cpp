@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <random>
 
 #include "bitstream/av1_afgs1_extraction.hpp"
 #include "bitstream/av1_sequence_header.hpp"
 #include "bitstream/metadata_insertion.hpp"
 #include "bitstream/stream_scan.hpp"
+#include "filmgrain/error.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "stream_fixtures.hpp"
@@ -210,6 +212,34 @@ TEST(ExtractAfgs1, DamagedPayloadIsAWarningAndTheFrameGetsNoGrain) {
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("TU 1"), std::string::npos) << warnings[0];
     EXPECT_NE(warnings[0].find("truncated"), std::string::npos) << warnings[0];
+    fs::remove_all(dir);
+}
+
+// Truncated and bit-flipped copies: warnings or a filmgrain::Error, never a crash, and
+// frames that keep their payload intact keep their parameters.
+TEST(ExtractAfgs1, DamagedStreamsAreReportedNotFatal) {
+    const fs::path dir = fresh_test_dir("afgs1-extract-fuzzed");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --obu --limit=" + std::to_string(kFrames) + " --cpu-used=6 -o " +
+                            q(dir / "raw.obu") + " " + q(dir / "src.y4m")));
+    const Fixture f = make_fixture(8);
+    const std::vector<uint8_t> stream = with_payloads(read_bytes(dir / "raw.obu"), f);
+    std::mt19937 rng(11);
+    int reported = 0, refused = 0;
+    for (int trial = 0; trial < 300; trial++) {
+        std::vector<uint8_t> s(stream.begin(), stream.begin() + long(rng() % stream.size()));
+        for (int flips = 0; flips < 3 && !s.empty(); flips++) s[rng() % s.size()] ^= uint8_t(1u << (rng() % 8));
+        const StreamScan scan = scan_stream(s.data(), s.size(), StreamCodec::kAv1);
+        std::vector<std::string> warnings;
+        try {
+            const auto frames = av1_params_from_afgs1(scan, warnings);
+            EXPECT_LE(frames.size(), scan.units.size());
+            reported += !warnings.empty() || scan.bad_units() > 0 || !scan.warnings.empty();
+        } catch (const Error&) {
+            refused++;
+        }
+    }
+    EXPECT_GT(reported + refused, 0);
     fs::remove_all(dir);
 }
 
