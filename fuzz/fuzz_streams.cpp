@@ -1,13 +1,13 @@
 // libFuzzer entry for the stream parsers: the first byte picks the codec (and whether
 // codec detection runs), the rest is the stream. Every layer a stream goes through in
 // `inspect` and `params extract` runs: NAL/OBU framing, SEI, POC, FGC/T.35 payloads,
-// the JSON and text reports and the parameter file (AV1: the AV1 sequence header and the
-// AFGS1 payloads turned into per-frame parameters).
+// the JSON and text reports and the parameter file (AV1: sequence and frame headers, and the
+// AFGS1 payloads or frame-header grain turned into per-frame parameters).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "bitstream/av1_afgs1_extraction.hpp"
+#include "bitstream/av1_grain_extraction.hpp"
 #include "bitstream/stream_report.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "filmgrain/error.hpp"
@@ -30,12 +30,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     try {
         std::vector<std::string> warnings;
         if (scan.codec == StreamCodec::kAv1)
-            (void)filmgrain::av1_frame_params_to_json(av1_params_from_afgs1(scan, warnings)).dump();
+            (void)filmgrain::av1_frame_params_to_json(av1_params_from_scan(scan, warnings)).dump();
         else
             (void)params_file_to_json(params_file_from_scan(scan, warnings)).dump();
     } catch (const filmgrain::Error&) {
-        // streams without pictures, and AV1 grain only in frame headers, are refused with an
-        // error, as the CLI does
+        // streams without pictures are refused with an error, as the CLI does
     }
     return 0;
 }

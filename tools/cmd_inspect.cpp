@@ -4,7 +4,7 @@
 #include <fstream>
 #include <memory>
 
-#include "bitstream/av1_afgs1_extraction.hpp"
+#include "bitstream/av1_grain_extraction.hpp"
 #include "bitstream/stream_report.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "cli_common.hpp"
@@ -58,17 +58,18 @@ void write_file_atomically(const std::string& path, const std::string& text) {
     }
 }
 
-// AV1: the frames' parameters from the stream's AFGS1 metadata, in the AV1 per-frame form.
+// AV1: the frames' parameters from the stream's AFGS1 metadata or frame headers, in the AV1
+// per-frame form.
 int run_extract_av1(const InspectOptions& o, const bitstream::StreamScan& s, std::vector<std::string>& warnings) {
-    const std::vector<Av1FrameParams> frames = bitstream::av1_params_from_afgs1(s, warnings);
+    const std::vector<Av1FrameParams> frames = bitstream::av1_params_from_scan(s, warnings);
     if (!o.quiet)
         for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
     write_file_atomically(o.output, av1_frame_params_to_json(frames).dump(1) + "\n");
     int with_grain = 0;
     for (const auto& f : frames) with_grain += f.grain.apply_grain != 0;
     if (!o.quiet && o.output != "-")
-        std::fprintf(stderr, "filmgrain: %zu frame(s), %d with AFGS1 film grain, written to %s\n", frames.size(),
-                     with_grain, o.output.c_str());
+        std::fprintf(stderr, "filmgrain: %zu frame(s), %d with film grain, written to %s\n", frames.size(), with_grain,
+                     o.output.c_str());
     return 0;
 }
 
@@ -117,7 +118,7 @@ void register_inspect(CLI::App& app) {
     CLI::App* extract = params->add_subcommand(
         "extract",
         "write the per-frame parameter file `apply --params` reads: H.26x FGC SEI in output order with POC, AV1 "
-        "AFGS1 metadata as per-frame AV1 parameters");
+        "film grain (AFGS1 metadata, else frame headers) as per-frame AV1 parameters");
     add_stream_options(extract, e.get());
     extract->add_option("--output,-o", e->output, "parameter file to write, - for stdout")->required();
     extract->add_flag("--quiet,-q", e->quiet, "no messages on stderr except errors");

@@ -135,7 +135,7 @@ ParamsFile params_file_from_scan(const StreamScan& scan, std::vector<std::string
     if (scan.codec == StreamCodec::kAv1)
         throw Error(ErrorCode::kUnsupported,
                     "AV1 streams: film grain parameters are AV1 sets (AFGS1 metadata or frame headers), not FGC "
-                    "SEIs; use av1_params_from_afgs1");
+                    "SEIs; use av1_params_from_scan");
     ParamsFile f;
     f.per_frame = true;
     for (const AccessUnit* u : units_in_output_order(scan)) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "bitstream/av1_frame_header.hpp"
 #include "bitstream/h264_poc.hpp"
 #include "bitstream/h265_poc.hpp"
 #include "bitstream/h266_poc.hpp"
@@ -179,6 +180,8 @@ StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
     scan.container = container == Av1Container::kAnnexB ? "annexb-av1" : av1_container_name(container);
     Av1Stream s = parse_av1_stream(data, size, container);
     scan.warnings = s.warnings;
+    std::optional<Av1SequenceHeader> sequence;
+    Av1FrameHeaderReader frame_headers;
     for (Av1TemporalUnit& tu : s.units) {
         AccessUnit au;
         au.index = int(scan.units.size());
@@ -191,8 +194,23 @@ StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
             if (obu.type == kObuSequenceHeader) {
                 try {
                     au.av1_sequence_header = parse_av1_sequence_header(obu.payload);
+                    sequence = au.av1_sequence_header;
                 } catch (const Error& e) {
                     au.warnings.push_back("sequence header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
+                }
+                continue;
+            }
+            // Frame headers are followed only where they carry film grain.
+            if ((obu.type == kObuFrame || obu.type == kObuFrameHeader) && sequence && sequence->film_grain_params_present) {
+                try {
+                    if (auto shown = frame_headers.read(*sequence, obu)) {
+                        if (au.av1_frame_grain)
+                            au.warnings.push_back("more than one shown frame in the temporal unit; the last one's "
+                                                  "film grain is kept");
+                        au.av1_frame_grain = shown->grain;
+                    }
+                } catch (const Error& e) {
+                    au.warnings.push_back("frame header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
                 }
                 continue;
             }

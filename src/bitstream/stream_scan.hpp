@@ -10,6 +10,7 @@
 
 #include "bitstream/av1_obu.hpp"
 #include "bitstream/av1_sequence_header.hpp"
+#include "filmgrain/av1_params.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "filmgrain/fgc_params.hpp"
 
@@ -49,6 +50,9 @@ struct AccessUnit {
     std::vector<FoundFgc> fgc;
     std::vector<FoundT35> t35;
     std::optional<Av1SequenceHeader> av1_sequence_header;  // AV1: the last one in this unit
+    // AV1 with film_grain_params_present = 1: the film grain of the frame this unit shows,
+    // from its frame header (update_grain = 0 resolved; apply_grain = 0 for none).
+    std::optional<Av1FilmGrainParams> av1_frame_grain;
     std::vector<std::string> warnings;
 };
 

@@ -1,4 +1,4 @@
-#include "bitstream/av1_afgs1_extraction.hpp"
+#include "bitstream/av1_grain_extraction.hpp"
 
 #include <optional>
 
@@ -49,11 +49,29 @@ std::vector<uint8_t> t35_bytes(const T35Payload& t) {
     return b;
 }
 
+// film_grain_params() of each shown frame, as the scan resolved them.
+std::vector<Av1FrameParams> frames_from_frame_headers(const StreamScan& scan, std::vector<std::string>& warnings) {
+    std::optional<Av1SequenceHeader> sequence;
+    std::vector<Av1FrameParams> frames;
+    for (const AccessUnit& u : scan.units) {
+        if (u.av1_sequence_header) sequence = u.av1_sequence_header;
+        Av1FrameParams f;
+        if (sequence) f.color = color_of(*sequence, sequence->matrix_coefficients);
+        if (u.av1_frame_grain)
+            f.grain = *u.av1_frame_grain;
+        else
+            warnings.push_back("TU " + std::to_string(u.index) +
+                               ": no shown frame's film grain could be read (written with apply_grain = 0)");
+        frames.push_back(f);
+    }
+    return frames;
+}
+
 }  // namespace
 
-std::vector<Av1FrameParams> av1_params_from_afgs1(const StreamScan& scan, std::vector<std::string>& warnings) {
+std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::vector<std::string>& warnings) {
     if (scan.codec != StreamCodec::kAv1)
-        throw Error(ErrorCode::kInvalidArgument, "AFGS1 extraction needs an AV1 stream, not " +
+        throw Error(ErrorCode::kInvalidArgument, "AV1 film grain extraction needs an AV1 stream, not " +
                                                      std::string(stream_codec_name(scan.codec)));
     if (scan.units.empty()) throw Error(ErrorCode::kMalformedPayload, "the stream holds no temporal unit");
     bool any_afgs1 = false, frame_header_grain = false;
@@ -61,11 +79,7 @@ std::vector<Av1FrameParams> av1_params_from_afgs1(const StreamScan& scan, std::v
         for (const FoundT35& t : u.t35) any_afgs1 |= is_afgs1_t35(t.t35);
         if (u.av1_sequence_header) frame_header_grain |= u.av1_sequence_header->film_grain_params_present != 0;
     }
-    if (!any_afgs1 && frame_header_grain)
-        throw Error(ErrorCode::kUnsupported,
-                    "this AV1 stream carries its film grain in the frame headers (sequence header "
-                    "film_grain_params_present = 1) and no AFGS1 metadata; `params extract` reads AFGS1 T.35 "
-                    "metadata only. `filmgrain decode` applies frame-header grain (through libdav1d / libaom)");
+    if (!any_afgs1 && frame_header_grain) return frames_from_frame_headers(scan, warnings);
     if (!any_afgs1) warnings.push_back("no AFGS1 metadata and no film grain in the frame headers: no frame has grain");
     if (any_afgs1 && frame_header_grain)
         warnings.push_back("the frame headers also carry film grain (film_grain_params_present = 1); only the AFGS1 "
