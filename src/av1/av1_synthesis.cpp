@@ -6,6 +6,7 @@
 #include <string>
 
 #include "av1/block_synthesis.hpp"
+#include "av1/grain_template_optimized.hpp"
 #include "av1/noise_stripe_rows.hpp"
 #include "av1/params_validation.hpp"
 #include "av1/simd/av1_kernels.hpp"
@@ -26,12 +27,12 @@ void copy_rows_without_grain(const PlaneView& s, const PlaneView& d, int y0, int
 
 
 Av1SynthesisContext::Av1SynthesisContext(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width,
-                                         int height, int matrix_coefficients) {
-    reset(p, format, bit_depth, width, height, matrix_coefficients);
+                                         int height, int matrix_coefficients, Kernels templates) {
+    reset(p, format, bit_depth, width, height, matrix_coefficients, templates);
 }
 
 void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width,
-                                int height, int matrix_coefficients) {
+                                int height, int matrix_coefficients, Kernels templates) {
     validate_params(p, format, bit_depth);
     if (width <= 0 || height <= 0)
         throw Error(ErrorCode::kInvalidArgument,
@@ -55,9 +56,16 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
     // 7.18.3.3: the luma template is also the source of the chroma filters'
     // luma term, so it is built whenever any plane gets grain. Built in place, so a
     // context reset for the next frame reuses its storage.
-    generate_luma_template(p, bit_depth, templates_[0]);
-    for (int pl = 1; pl <= 2; ++pl)
-        if (has_grain_[pl]) generate_chroma_template(p, bit_depth, pl, subx_, suby_, templates_[0], templates_[pl]);
+    if (templates == Kernels::kOptimized) {
+        generate_luma_template_optimized(p, bit_depth, templates_[0]);
+        for (int pl = 1; pl <= 2; ++pl)
+            if (has_grain_[pl])
+                generate_chroma_template_optimized(p, bit_depth, pl, subx_, suby_, templates_[0], templates_[pl]);
+    } else {
+        generate_luma_template(p, bit_depth, templates_[0]);
+        for (int pl = 1; pl <= 2; ++pl)
+            if (has_grain_[pl]) generate_chroma_template(p, bit_depth, pl, subx_, suby_, templates_[0], templates_[pl]);
+    }
 
     scaling_[0].assign(p.point_y_value.data(), p.point_y_scaling.data(), p.num_y_points, bit_depth);
     if (p.chroma_scaling_from_luma) {
@@ -289,9 +297,9 @@ void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, co
         throw Error(ErrorCode::kInvalidArgument, "src and dst frames differ in format, bit depth or size");
     if (!context_)
         context_ = std::make_unique<Av1SynthesisContext>(p, src.format, src.bit_depth, src.width, src.height,
-                                                         matrix_coefficients);
+                                                         matrix_coefficients, kernels_);
     else
-        context_->reset(p, src.format, src.bit_depth, src.width, src.height, matrix_coefficients);
+        context_->reset(p, src.format, src.bit_depth, src.width, src.height, matrix_coefficients, kernels_);
     const Av1SynthesisContext& ctx = *context_;
     // Every worker's scratch is sized here, on the calling thread, so that a worker that
     // happened to get no stripe in the first frames cannot allocate later.

@@ -37,13 +37,14 @@ class Av1SynthesisContext {
 public:
     // Validates `p` against the format (throws filmgrain::Error) and builds the
     // per-frame state. matrix_coefficients only matters for restricted clipping.
+    // `templates` picks the grain template generator (both give the same templates).
     Av1SynthesisContext(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width, int height,
-                        int matrix_coefficients);
+                        int matrix_coefficients, Kernels templates = Kernels::kReference);
 
     // Rebuilds the context for another frame, reusing its storage (no allocation once it
     // has held a frame of the same bit depth).
     void reset(const Av1FilmGrainParams& p, ChromaFormat format, int bit_depth, int width, int height,
-               int matrix_coefficients);
+               int matrix_coefficients, Kernels templates = Kernels::kReference);
 
     int stripe_count() const;
     // Bytes held by templates and scaling tables.

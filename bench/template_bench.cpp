@@ -1,0 +1,80 @@
+// Time to build the three AV1 grain templates of one frame (AV1 spec 7.18.3.3: Gaussian
+// fill and auto-regressive filter), scalar reference vs optimized twin. Paid once per
+// frame whatever the resolution, because grain_seed changes every frame; the seed is
+// varied here too. Not part of the test suite.
+//
+//   build/filmgrain_template_bench [--benchmark_repetitions=9]
+//   FILMGRAIN_SIMD_TARGET=SSE4 build/filmgrain_template_bench   # force a vector target
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "av1/grain_template_generation.hpp"
+#include "av1/grain_template_optimized.hpp"
+#include "core/simd_targets.hpp"
+
+using namespace filmgrain;
+
+namespace {
+
+// The synthesis benchmark's parameter set (lag 3: the most filter work), with a
+// configurable lag.
+Av1FilmGrainParams params(int lag) {
+    Av1FilmGrainParams p;
+    p.apply_grain = 1;
+    p.grain_seed = 1234;
+    p.num_y_points = 3;
+    p.point_y_value = {0, 128, 255};
+    p.point_y_scaling = {40, 70, 50};
+    p.num_cb_points = 2;
+    p.point_cb_value = {0, 255};
+    p.point_cb_scaling = {30, 40};
+    p.num_cr_points = 2;
+    p.point_cr_value = {0, 255};
+    p.point_cr_scaling = {35, 45};
+    p.ar_coeff_lag = lag;
+    for (int i = 0; i < 24; i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i % 7) - 3;
+    for (int i = 0; i < 25; i++) p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i % 5) - 2;
+    for (int i = 0; i < 25; i++) p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i % 5) + 2;
+    p.ar_coeff_shift_minus_6 = 1;
+    return p;
+}
+
+// args: bit depth, subsampling (0 = 4:4:4, 1 = 4:2:0), lag, optimized (0/1)
+void BM_Av1Templates(benchmark::State& state) {
+    const int bd = int(state.range(0)), sub = int(state.range(1));
+    const bool optimized = state.range(3) != 0;
+    Av1FilmGrainParams p = params(int(state.range(2)));
+    av1::GrainTemplate t[3];
+    for (auto _ : state) {
+        p.grain_seed = (p.grain_seed + 7919) & 0xffff;
+        if (optimized) {
+            av1::generate_luma_template_optimized(p, bd, t[0]);
+            for (int pl = 1; pl <= 2; pl++) av1::generate_chroma_template_optimized(p, bd, pl, sub, sub, t[0], t[pl]);
+        } else {
+            av1::generate_luma_template(p, bd, t[0]);
+            for (int pl = 1; pl <= 2; pl++) av1::generate_chroma_template(p, bd, pl, sub, sub, t[0], t[pl]);
+        }
+        benchmark::DoNotOptimize(t[2].samples.data());
+    }
+    state.SetLabel(optimized ? simd::dispatched_target() : "reference");
+}
+BENCHMARK(BM_Av1Templates)
+    ->ArgNames({"bd", "sub", "lag", "opt"})
+    ->ArgsProduct({{8, 10}, {1, 0}, {3, 0}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (const char* t = std::getenv("FILMGRAIN_SIMD_TARGET"); t && !simd::force_target(std::string(t))) {
+        std::fprintf(stderr, "FILMGRAIN_SIMD_TARGET=%s is not available on this CPU\n", t);
+        return 2;
+    }
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -1,0 +1,107 @@
+// Optimized AV1 grain templates (7.18.3.3); see grain_template_optimized.hpp.
+#include "av1/grain_template_optimized.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+
+#include "av1/gaussian_sequence.hpp"
+#include "av1/random_number.hpp"
+#include "av1/simd/grain_ar_filter.hpp"
+
+namespace filmgrain::av1 {
+namespace {
+
+// Gaussian_Sequence[get_random_number(11)] rounded by `shift`, for `count` samples in
+// raster order. The spec's LFSR (7.18.3.2) feeds back bits 0, 1, 3 and 12, so the next
+// four feedback bits depend only on the current 16 bits: one update of a 20-bit window
+// gives four successive states at once. The 11-bit number of the k-th of them is bits
+// k + 6 .. k + 16 of the window (state >> 5 after k + 1 single steps).
+void fill_gaussian_batched(int16_t* out, int count, uint16_t seed, int shift) {
+    const int round = (1 << shift) >> 1;  // Round2(x, 0) is x
+    auto scaled = [&](uint32_t index) {
+        return static_cast<int16_t>((kGaussianSequence[index & 0x7ffu] + round) >> shift);
+    };
+    uint32_t r = seed;
+    int i = 0;
+    for (; i + 4 <= count; i += 4) {
+        const uint32_t feedback = (r ^ (r >> 1) ^ (r >> 3) ^ (r >> 12)) & 0xfu;
+        const uint32_t window = r | (feedback << 16);
+        out[i] = scaled(window >> 6);
+        out[i + 1] = scaled(window >> 7);
+        out[i + 2] = scaled(window >> 8);
+        out[i + 3] = scaled(window >> 9);
+        r = window >> 4;
+    }
+    RandomNumberGenerator rng(static_cast<uint16_t>(r));
+    for (; i < count; ++i) out[i] = scaled(static_cast<uint32_t>(rng.get(11)));
+}
+
+// As the reference: 12-bit Gaussian values brought to the bit depth, then lowered by
+// grain_scale_shift; all zero (no random numbers drawn) for a plane without grain.
+void fill_white_noise(GrainTemplate& t, uint16_t seed, bool enabled, int bit_depth, int grain_scale_shift) {
+    const int count = t.width * t.height;
+    if (!enabled) {
+        std::fill(t.samples.begin(), t.samples.end(), int16_t{0});
+        return;
+    }
+    fill_gaussian_batched(t.samples.data(), count, seed, 12 - bit_depth + grain_scale_shift);
+}
+
+void size_template(GrainTemplate& t, int width, int height) {
+    t.width = width;
+    t.height = height;
+    t.samples.resize(static_cast<std::size_t>(width) * height);
+}
+
+simd::ArFilterJob ar_job(GrainTemplate& t, const Av1FilmGrainParams& p, int bit_depth, const int* coeffs) {
+    simd::ArFilterJob j;
+    j.grain = t.samples.data();
+    j.width = t.width;
+    j.height = t.height;
+    j.coeffs = coeffs;
+    j.lag = p.ar_coeff_lag;
+    j.shift = p.ar_coeff_shift_minus_6 + 6;
+    j.grain_min = -(128 << (bit_depth - 8));
+    j.grain_max = (128 << (bit_depth - 8)) - 1;
+    return j;
+}
+
+}  // namespace
+
+void generate_luma_template_optimized(const Av1FilmGrainParams& p, int bit_depth, GrainTemplate& t) {
+    size_template(t, kLumaTemplateWidth, kLumaTemplateHeight);
+    const bool enabled = p.num_y_points > 0;
+    fill_white_noise(t, luma_template_seed(p.grain_seed), enabled, bit_depth, p.grain_scale_shift);
+    if (!enabled) return;
+    int coeffs[24];
+    const int taps = 2 * p.ar_coeff_lag * (p.ar_coeff_lag + 1);
+    for (int i = 0; i < taps; ++i) coeffs[i] = p.ar_coeffs_y_plus_128[static_cast<std::size_t>(i)] - 128;
+    simd::ar_filter_template(ar_job(t, p, bit_depth, coeffs));
+}
+
+void generate_chroma_template_optimized(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
+                                        int subsampling_y, const GrainTemplate& luma, GrainTemplate& t) {
+    size_template(t, subsampling_x ? kSubsampledTemplateWidth : kLumaTemplateWidth,
+                  subsampling_y ? kSubsampledTemplateHeight : kLumaTemplateHeight);
+    const int num_points = plane == 1 ? p.num_cb_points : p.num_cr_points;
+    const bool enabled = num_points > 0 || p.chroma_scaling_from_luma;
+    const uint16_t seed = plane == 1 ? cb_template_seed(p.grain_seed) : cr_template_seed(p.grain_seed);
+    fill_white_noise(t, seed, enabled, bit_depth, p.grain_scale_shift);
+    if (!enabled) return;
+    const auto& plus_128 = plane == 1 ? p.ar_coeffs_cb_plus_128 : p.ar_coeffs_cr_plus_128;
+    int coeffs[25];
+    const int taps = 2 * p.ar_coeff_lag * (p.ar_coeff_lag + 1) + 1;  // the last one weights luma
+    for (int i = 0; i < taps; ++i) coeffs[i] = plus_128[static_cast<std::size_t>(i)] - 128;
+    simd::ArFilterJob j = ar_job(t, p, bit_depth, coeffs);
+    // The reference adds the luma term only when luma has grain (num_y_points > 0).
+    if (p.num_y_points > 0) {
+        j.luma = luma.samples.data();
+        j.luma_width = luma.width;
+        j.subsampling_x = subsampling_x;
+        j.subsampling_y = subsampling_y;
+    }
+    simd::ar_filter_template(j);
+}
+
+}  // namespace filmgrain::av1
