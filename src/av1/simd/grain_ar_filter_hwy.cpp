@@ -4,8 +4,11 @@
 // `lag` left neighbours on the current row: the rows above are final before the row
 // starts. So each row is done in two passes: the rows-above taps (and chroma's luma term)
 // for the whole row in vector lanes, then a short scalar pass that adds the left taps,
-// rounds, adds to the white noise and clips, sample by sample. Integer sums are exact, so
-// regrouping the taps cannot change a result.
+// shifts and clips, sample by sample. Integer sums are exact, so regrouping the taps
+// cannot change a result. The vector pass also folds in the white noise and the rounding:
+// noise + Round2(sum, s) equals ((noise << s) + sum + (1 << (s - 1))) >> s exactly (floor
+// division by 2^s of a multiple of 2^s plus a remainder), which leaves only a multiply,
+// an add and a shift on the serial dependency chain.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "av1/simd/grain_ar_filter_hwy.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
@@ -58,12 +61,14 @@ HWY_INLINE hn::Vec<D32> LumaAverageLanes(D32 d32, const ArFilterJob& j, const in
     return hn::ShiftRightSame(hn::Add(sum, hn::Set(d32, (1 << n) >> 1)), n);
 }
 
-// Rows-above taps plus the luma term for lanes [x, x + lanes) of row y, into partial[x - 3].
+// (noise << shift) + rounding + rows-above taps + luma term for lanes [x, x + lanes) of
+// row y, into partial[x - 3].
 template <int Lag, class D32>
 HWY_INLINE void AboveLanes(D32 d32, const ArFilterJob& j, const int16_t* row, const int16_t* lrow, int luma_coeff,
                            int x, int32_t* partial) {
     const hn::Rebind<int16_t, D32> d16;
-    auto acc = hn::Zero(d32);
+    auto acc = hn::Add(hn::ShiftLeftSame(hn::PromoteTo(d32, hn::LoadU(d16, row + x)), j.shift),
+                       hn::Set(d32, 1 << (j.shift - 1)));
     int pos = 0;
     for (int dy = -Lag; dy < 0; ++dy) {
         const int16_t* r = row + static_cast<std::ptrdiff_t>(dy) * j.width + x;
@@ -79,7 +84,7 @@ template <int Lag>
 void AboveScalar(const ArFilterJob& j, const int16_t* row, const int16_t* lrow, int luma_coeff, int x0, int x1,
                  int32_t* partial) {
     for (int x = x0; x < x1; ++x) {
-        int sum = 0, pos = 0;
+        int sum = (row[x] << j.shift) + (1 << (j.shift - 1)), pos = 0;
         for (int dy = -Lag; dy < 0; ++dy)
             for (int dx = -Lag; dx <= Lag; ++dx)
                 sum += j.coeffs[pos++] * row[static_cast<std::ptrdiff_t>(dy) * j.width + x + dx];
@@ -88,21 +93,23 @@ void AboveScalar(const ArFilterJob& j, const int16_t* row, const int16_t* lrow, 
     }
 }
 
-// The serial part: left taps, Round2 by ar_coeff_shift, add and clip. The three previous
-// outputs stay in registers rather than being re-read from the row just written.
+// The serial part: left taps, shift and clip. The previous outputs stay in registers
+// rather than being re-read from the row just written, and the taps of the older ones
+// are added first, off the chain through the newest. Clipping is rare with the
+// coefficients encoders produce, so it is a predicted branch rather than on the chain.
 template <int Lag>
 HWY_INLINE void LeftSerial(const ArFilterJob& j, int16_t* row, int x0, int x1, const int32_t* partial) {
     const int* left = j.coeffs + Lag * (2 * Lag + 1);  // dx = -Lag .. -1
     const int c1 = Lag >= 1 ? left[Lag - 1] : 0, c2 = Lag >= 2 ? left[Lag - 2] : 0, c3 = Lag >= 3 ? left[0] : 0;
-    const int shift = j.shift, round = 1 << (shift - 1);
+    const int shift = j.shift, gmin = j.grain_min, gmax = j.grain_max;
     int n1 = row[x0 - 1], n2 = row[x0 - 2], n3 = row[x0 - 3];
     for (int x = x0; x < x1; ++x) {
         int sum = partial[x - kArPadding];
-        if constexpr (Lag >= 1) sum += c1 * n1;
-        if constexpr (Lag >= 2) sum += c2 * n2;
         if constexpr (Lag >= 3) sum += c3 * n3;
-        int v = row[x] + ((sum + round) >> shift);
-        v = v < j.grain_min ? j.grain_min : v > j.grain_max ? j.grain_max : v;
+        if constexpr (Lag >= 2) sum += c2 * n2;
+        if constexpr (Lag >= 1) sum += c1 * n1;
+        int v = sum >> shift;
+        if (HWY_UNLIKELY(v < gmin || v > gmax)) v = v < gmin ? gmin : gmax;
         row[x] = static_cast<int16_t>(v);
         n3 = n2;
         n2 = n1;
