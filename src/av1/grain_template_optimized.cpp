@@ -17,11 +17,14 @@ namespace {
 // four feedback bits depend only on the current 16 bits: one update of a 20-bit window
 // gives four successive states at once. The 11-bit number of the k-th of them is bits
 // k + 6 .. k + 16 of the window (state >> 5 after k + 1 single steps).
+// The table is rounded once up front (2048 entries, vectorized by the compiler) rather
+// than per sample: the templates draw 4.5 times as many numbers as that.
 void fill_gaussian_batched(int16_t* out, int count, uint16_t seed, int shift) {
     const int round = (1 << shift) >> 1;  // Round2(x, 0) is x
-    auto scaled = [&](uint32_t index) {
-        return static_cast<int16_t>((kGaussianSequence[index & 0x7ffu] + round) >> shift);
-    };
+    int16_t table[kGaussianSequenceSize];
+    for (int i = 0; i < kGaussianSequenceSize; ++i)
+        table[i] = static_cast<int16_t>((kGaussianSequence[static_cast<std::size_t>(i)] + round) >> shift);
+    auto scaled = [&](uint32_t index) { return table[index & 0x7ffu]; };
     uint32_t r = seed;
     int i = 0;
     for (; i + 4 <= count; i += 4) {
