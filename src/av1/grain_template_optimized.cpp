@@ -13,10 +13,12 @@ namespace filmgrain::av1 {
 namespace {
 
 // Gaussian_Sequence[get_random_number(11)] rounded by `shift`, for `count` samples in
-// raster order. The spec's LFSR (7.18.3.2) feeds back bits 0, 1, 3 and 12, so the next
-// four feedback bits depend only on the current 16 bits: one update of a 20-bit window
-// gives four successive states at once. The 11-bit number of the k-th of them is bits
-// k + 6 .. k + 16 of the window (state >> 5 after k + 1 single steps).
+// raster order. The spec's LFSR (7.18.3.2) feeds back bits 0, 1, 3 and 12: with the
+// register holding stream bits b[t..t+15], a step appends b[t+16] = b[t] ^ b[t+1] ^
+// b[t+3] ^ b[t+12]. F = r ^ r>>1 ^ r>>3 ^ r>>12 gives the next four bits directly (bits
+// 0..3); bits 4..7 lack only their b[t+16..t+19] term, which is F's bits 0..3. So one
+// update of a 24-bit window gives eight successive states, and the 11-bit number of the
+// k-th of them is bits k + 6 .. k + 16 of the window (state >> 5 after k + 1 steps).
 // The table is rounded once up front (2048 entries, vectorized by the compiler) rather
 // than per sample: the templates draw 4.5 times as many numbers as that.
 void fill_gaussian_batched(int16_t* out, int count, uint16_t seed, int shift) {
@@ -27,14 +29,11 @@ void fill_gaussian_batched(int16_t* out, int count, uint16_t seed, int shift) {
     auto scaled = [&](uint32_t index) { return table[index & 0x7ffu]; };
     uint32_t r = seed;
     int i = 0;
-    for (; i + 4 <= count; i += 4) {
-        const uint32_t feedback = (r ^ (r >> 1) ^ (r >> 3) ^ (r >> 12)) & 0xfu;
-        const uint32_t window = r | (feedback << 16);
-        out[i] = scaled(window >> 6);
-        out[i + 1] = scaled(window >> 7);
-        out[i + 2] = scaled(window >> 8);
-        out[i + 3] = scaled(window >> 9);
-        r = window >> 4;
+    for (; i + 8 <= count; i += 8) {
+        const uint32_t f = r ^ (r >> 1) ^ (r >> 3) ^ (r >> 12);
+        const uint32_t window = r | (((f ^ (f << 4)) & 0xffu) << 16);
+        for (int k = 0; k < 8; ++k) out[i + k] = scaled(window >> (k + 6));
+        r = window >> 8;
     }
     RandomNumberGenerator rng(static_cast<uint16_t>(r));
     for (; i < count; ++i) out[i] = scaled(static_cast<uint32_t>(rng.get(11)));
