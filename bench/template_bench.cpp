@@ -51,7 +51,7 @@ void BM_Av1Templates(benchmark::State& state) {
         p.grain_seed = (p.grain_seed + 7919) & 0xffff;
         if (optimized) {
             av1::generate_luma_template_optimized(p, bd, t[0]);
-            for (int pl = 1; pl <= 2; pl++) av1::generate_chroma_template_optimized(p, bd, pl, sub, sub, t[0], t[pl]);
+            av1::generate_chroma_templates_optimized(p, bd, sub, sub, t[0], t[1], t[2]);
         } else {
             av1::generate_luma_template(p, bd, t[0]);
             for (int pl = 1; pl <= 2; pl++) av1::generate_chroma_template(p, bd, pl, sub, sub, t[0], t[pl]);

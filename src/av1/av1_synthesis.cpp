@@ -58,9 +58,9 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
     // context reset for the next frame reuses its storage.
     if (templates == Kernels::kOptimized) {
         generate_luma_template_optimized(p, bit_depth, templates_[0]);
-        for (int pl = 1; pl <= 2; ++pl)
-            if (has_grain_[pl])
-                generate_chroma_template_optimized(p, bit_depth, pl, subx_, suby_, templates_[0], templates_[pl]);
+        if (has_grain_[1] || has_grain_[2])
+            generate_chroma_templates_optimized(p, bit_depth, subx_, suby_, templates_[0], templates_[1],
+                                                templates_[2]);
     } else {
         generate_luma_template(p, bit_depth, templates_[0]);
         for (int pl = 1; pl <= 2; ++pl)

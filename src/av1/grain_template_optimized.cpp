@@ -82,28 +82,54 @@ void generate_luma_template_optimized(const Av1FilmGrainParams& p, int bit_depth
     simd::ar_filter_template(ar_job(t, p, bit_depth, coeffs));
 }
 
-void generate_chroma_template_optimized(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
-                                        int subsampling_y, const GrainTemplate& luma, GrainTemplate& t) {
+namespace {
+
+// Sizes and fills a chroma template; returns whether the AR filter applies (the plane has
+// grain), with its job set up over `coeffs`.
+bool prepare_chroma(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x, int subsampling_y,
+                    const GrainTemplate& luma, GrainTemplate& t, int (&coeffs)[25], simd::ArFilterJob& job) {
     size_template(t, subsampling_x ? kSubsampledTemplateWidth : kLumaTemplateWidth,
                   subsampling_y ? kSubsampledTemplateHeight : kLumaTemplateHeight);
     const int num_points = plane == 1 ? p.num_cb_points : p.num_cr_points;
     const bool enabled = num_points > 0 || p.chroma_scaling_from_luma;
     const uint16_t seed = plane == 1 ? cb_template_seed(p.grain_seed) : cr_template_seed(p.grain_seed);
     fill_white_noise(t, seed, enabled, bit_depth, p.grain_scale_shift);
-    if (!enabled) return;
+    if (!enabled) return false;
     const auto& plus_128 = plane == 1 ? p.ar_coeffs_cb_plus_128 : p.ar_coeffs_cr_plus_128;
-    int coeffs[25];
     const int taps = 2 * p.ar_coeff_lag * (p.ar_coeff_lag + 1) + 1;  // the last one weights luma
     for (int i = 0; i < taps; ++i) coeffs[i] = plus_128[static_cast<std::size_t>(i)] - 128;
-    simd::ArFilterJob j = ar_job(t, p, bit_depth, coeffs);
+    job = ar_job(t, p, bit_depth, coeffs);
     // The reference adds the luma term only when luma has grain (num_y_points > 0).
     if (p.num_y_points > 0) {
-        j.luma = luma.samples.data();
-        j.luma_width = luma.width;
-        j.subsampling_x = subsampling_x;
-        j.subsampling_y = subsampling_y;
+        job.luma = luma.samples.data();
+        job.luma_width = luma.width;
+        job.subsampling_x = subsampling_x;
+        job.subsampling_y = subsampling_y;
     }
-    simd::ar_filter_template(j);
+    return true;
+}
+
+}  // namespace
+
+void generate_chroma_template_optimized(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
+                                        int subsampling_y, const GrainTemplate& luma, GrainTemplate& t) {
+    int coeffs[25];
+    simd::ArFilterJob job;
+    if (prepare_chroma(p, bit_depth, plane, subsampling_x, subsampling_y, luma, t, coeffs, job))
+        simd::ar_filter_template(job);
+}
+
+void generate_chroma_templates_optimized(const Av1FilmGrainParams& p, int bit_depth, int subsampling_x,
+                                         int subsampling_y, const GrainTemplate& luma, GrainTemplate& cb,
+                                         GrainTemplate& cr) {
+    int cb_coeffs[25], cr_coeffs[25];
+    simd::ArFilterJob cb_job, cr_job;
+    const bool cb_on = prepare_chroma(p, bit_depth, 1, subsampling_x, subsampling_y, luma, cb, cb_coeffs, cb_job);
+    const bool cr_on = prepare_chroma(p, bit_depth, 2, subsampling_x, subsampling_y, luma, cr, cr_coeffs, cr_job);
+    if (cb_on && cr_on)
+        simd::ar_filter_template_pair(cb_job, cr_job);
+    else if (cb_on || cr_on)
+        simd::ar_filter_template(cb_on ? cb_job : cr_job);
 }
 
 }  // namespace filmgrain::av1

@@ -12,5 +12,10 @@ namespace filmgrain::av1 {
 void generate_luma_template_optimized(const Av1FilmGrainParams& p, int bit_depth, GrainTemplate& out);
 void generate_chroma_template_optimized(const Av1FilmGrainParams& p, int bit_depth, int plane, int subsampling_x,
                                         int subsampling_y, const GrainTemplate& luma, GrainTemplate& out);
+// Cb and Cr together (the same templates as two generate_chroma_template_optimized calls),
+// their AR filters interleaved; a plane without grain gets its all-zero template.
+void generate_chroma_templates_optimized(const Av1FilmGrainParams& p, int bit_depth, int subsampling_x,
+                                         int subsampling_y, const GrainTemplate& luma, GrainTemplate& cb,
+                                         GrainTemplate& cr);
 
 }  // namespace filmgrain::av1

@@ -1,6 +1,6 @@
 // Checkasm-style equivalence of the optimized AV1 grain templates
 // (grain_template_optimized: batched Gaussian fill + vector AR filter) with the scalar
-// reference of 7.18.3.3, for every vector target this CPU runs (each forced in turn):
+// reference of 7.18.3.3 (one plane at a time and Cb/Cr together), for every vector target this CPU runs (each forced in turn):
 // every lag, ar_coeff_shift, grain_scale_shift, bit depth and subsampling, with and
 // without luma grain, with chroma_scaling_from_luma, and coefficients over their whole
 // range (so the clipping to the grain range is exercised). Any difference is reported with
@@ -78,12 +78,16 @@ TEST_P(SimdAv1TemplateEquivalence, LumaAndChromaTemplates) {
         got_y.samples.assign(7, int16_t(99));  // reused storage of another size must not matter
         av1::generate_luma_template_optimized(p, bd, got_y);
         ASSERT_EQ(diff(got_y, want_y), "") << "luma, " << where;
+        av1::GrainTemplate want[3], got[3];
         for (int plane = 1; plane <= 2; plane++) {
-            const av1::GrainTemplate want = av1::generate_chroma_template(p, bd, plane, sub[0], sub[1], want_y);
-            av1::GrainTemplate got;
-            av1::generate_chroma_template_optimized(p, bd, plane, sub[0], sub[1], want_y, got);
-            ASSERT_EQ(diff(got, want), "") << "plane " << plane << ", " << where;
+            want[plane] = av1::generate_chroma_template(p, bd, plane, sub[0], sub[1], want_y);
+            av1::generate_chroma_template_optimized(p, bd, plane, sub[0], sub[1], want_y, got[plane]);
+            ASSERT_EQ(diff(got[plane], want[plane]), "") << "plane " << plane << ", " << where;
         }
+        // Cb and Cr filtered in lockstep (what the synthesizer uses)
+        av1::generate_chroma_templates_optimized(p, bd, sub[0], sub[1], want_y, got[1], got[2]);
+        ASSERT_EQ(diff(got[1], want[1]), "") << "Cb of the pair, " << where;
+        ASSERT_EQ(diff(got[2], want[2]), "") << "Cr of the pair, " << where;
         counts[p.ar_coeff_lag]++;
         (p.num_y_points > 0 ? with_luma_term : without_luma_term)++;
     }

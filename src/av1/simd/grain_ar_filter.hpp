@@ -25,5 +25,8 @@ struct ArFilterJob {
 
 // Filters rows [3, height) and columns [3, width - 3) of job.grain, as the reference does.
 void ar_filter_template(const ArFilterJob& job);
+// Both templates, which must have the same size and lag (Cb and Cr of one frame): the same
+// results as two ar_filter_template calls, with the two serial chains interleaved.
+void ar_filter_template_pair(const ArFilterJob& first, const ArFilterJob& second);
 
 }  // namespace filmgrain::av1::simd

@@ -117,26 +117,68 @@ HWY_INLINE void LeftSerial(const ArFilterJob& j, int16_t* row, int x0, int x1, c
     }
 }
 
+// Vector pass of row y: partial[x - 3] for every filtered column.
 template <int Lag>
-void FilterRows(const ArFilterJob& j) {
+HWY_INLINE void AbovePass(const ArFilterJob& j, int y, int32_t* partial) {
     const hn::ScalableTag<int32_t> d32;
     const int lanes = static_cast<int>(hn::Lanes(d32));
     const int x0 = kArPadding, x1 = j.width - kArPadding;
     const int luma_coeff = j.luma ? j.coeffs[2 * Lag * (Lag + 1)] : 0;
+    const int16_t* row = j.grain + static_cast<std::ptrdiff_t>(y) * j.width;
+    const int16_t* lrow = j.luma ? CositedLumaRow(j, y) : nullptr;
+    if (x1 - x0 >= lanes) {
+        int x = x0;
+        for (; x + lanes <= x1; x += lanes) AboveLanes<Lag>(d32, j, row, lrow, luma_coeff, x, partial);
+        // The last partial vector is redone overlapping the previous one: partial sums
+        // only read finished rows, so recomputing a lane gives the same value.
+        if (x < x1) AboveLanes<Lag>(d32, j, row, lrow, luma_coeff, x1 - lanes, partial);
+    } else {
+        AboveScalar<Lag>(j, row, lrow, luma_coeff, x0, x1, partial);
+    }
+}
+
+template <int Lag>
+void FilterRows(const ArFilterJob& j) {
     HWY_ALIGN int32_t partial[kMaxColumns];
     for (int y = kArPadding; y < j.height; ++y) {
-        int16_t* row = j.grain + static_cast<std::ptrdiff_t>(y) * j.width;
-        const int16_t* lrow = j.luma ? CositedLumaRow(j, y) : nullptr;
-        if (x1 - x0 >= lanes) {
-            int x = x0;
-            for (; x + lanes <= x1; x += lanes) AboveLanes<Lag>(d32, j, row, lrow, luma_coeff, x, partial);
-            // The last partial vector is redone overlapping the previous one: partial sums
-            // only read finished rows, so recomputing a lane gives the same value.
-            if (x < x1) AboveLanes<Lag>(d32, j, row, lrow, luma_coeff, x1 - lanes, partial);
-        } else {
-            AboveScalar<Lag>(j, row, lrow, luma_coeff, x0, x1, partial);
+        AbovePass<Lag>(j, y, partial);
+        LeftSerial<Lag>(j, j.grain + static_cast<std::ptrdiff_t>(y) * j.width, kArPadding, j.width - kArPadding,
+                        partial);
+    }
+}
+
+// Two templates of the same size (Cb and Cr): their serial chains are independent, so
+// they are interleaved sample by sample for the CPU to overlap them.
+template <int Lag>
+void FilterRowsPair(const ArFilterJob& a, const ArFilterJob& b) {
+    HWY_ALIGN int32_t pa[kMaxColumns];
+    HWY_ALIGN int32_t pb[kMaxColumns];
+    const int* la = a.coeffs + Lag * (2 * Lag + 1);
+    const int* lb = b.coeffs + Lag * (2 * Lag + 1);
+    const int a1 = Lag >= 1 ? la[Lag - 1] : 0, a2 = Lag >= 2 ? la[Lag - 2] : 0, a3 = Lag >= 3 ? la[0] : 0;
+    const int b1 = Lag >= 1 ? lb[Lag - 1] : 0, b2 = Lag >= 2 ? lb[Lag - 2] : 0, b3 = Lag >= 3 ? lb[0] : 0;
+    const int shift = a.shift, gmin = a.grain_min, gmax = a.grain_max;
+    const int x0 = kArPadding, x1 = a.width - kArPadding;
+    for (int y = kArPadding; y < a.height; ++y) {
+        AbovePass<Lag>(a, y, pa);
+        AbovePass<Lag>(b, y, pb);
+        int16_t* ra = a.grain + static_cast<std::ptrdiff_t>(y) * a.width;
+        int16_t* rb = b.grain + static_cast<std::ptrdiff_t>(y) * b.width;
+        int an1 = ra[x0 - 1], an2 = ra[x0 - 2], an3 = ra[x0 - 3];
+        int bn1 = rb[x0 - 1], bn2 = rb[x0 - 2], bn3 = rb[x0 - 3];
+        for (int x = x0; x < x1; ++x) {
+            int sa = pa[x - kArPadding], sb = pb[x - kArPadding];
+            if constexpr (Lag >= 3) sa += a3 * an3, sb += b3 * bn3;
+            if constexpr (Lag >= 2) sa += a2 * an2, sb += b2 * bn2;
+            if constexpr (Lag >= 1) sa += a1 * an1, sb += b1 * bn1;
+            int va = sa >> shift, vb = sb >> shift;
+            if (HWY_UNLIKELY(va < gmin || va > gmax)) va = va < gmin ? gmin : gmax;
+            if (HWY_UNLIKELY(vb < gmin || vb > gmax)) vb = vb < gmin ? gmin : gmax;
+            ra[x] = static_cast<int16_t>(va);
+            rb[x] = static_cast<int16_t>(vb);
+            an3 = an2, an2 = an1, an1 = va;
+            bn3 = bn2, bn2 = bn1, bn1 = vb;
         }
-        LeftSerial<Lag>(j, row, x0, x1, partial);
     }
 }
 
@@ -149,6 +191,15 @@ void ArFilterTemplate(const ArFilterJob& j) {
     }
 }
 
+void ArFilterTemplatePair(const ArFilterJob& a, const ArFilterJob& b) {
+    switch (a.lag) {
+        case 0: return FilterRowsPair<0>(a, b);
+        case 1: return FilterRowsPair<1>(a, b);
+        case 2: return FilterRowsPair<2>(a, b);
+        default: return FilterRowsPair<3>(a, b);
+    }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace filmgrain::av1::simd
 HWY_AFTER_NAMESPACE();
@@ -157,8 +208,12 @@ HWY_AFTER_NAMESPACE();
 namespace filmgrain::av1::simd {
 
 HWY_EXPORT(ArFilterTemplate);
+HWY_EXPORT(ArFilterTemplatePair);
 
 void ar_filter_template(const ArFilterJob& job) { HWY_DYNAMIC_DISPATCH(ArFilterTemplate)(job); }
+void ar_filter_template_pair(const ArFilterJob& first, const ArFilterJob& second) {
+    HWY_DYNAMIC_DISPATCH(ArFilterTemplatePair)(first, second);
+}
 
 }  // namespace filmgrain::av1::simd
 #endif  // HWY_ONCE
