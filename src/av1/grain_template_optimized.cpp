@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstring>
 
 #include "av1/gaussian_sequence.hpp"
 #include "av1/random_number.hpp"
@@ -19,8 +18,8 @@ namespace {
 // 0..3); bits 4..7 lack only their b[t+16..t+19] term, which is F's bits 0..3. So one
 // update of a 24-bit window gives eight successive states, and the 11-bit number of the
 // k-th of them is bits k + 6 .. k + 16 of the window (state >> 5 after k + 1 steps).
-// The table is rounded once up front (2048 entries, vectorized by the compiler) rather
-// than per sample: the templates draw 4.5 times as many numbers as that.
+// The table is rounded once up front (2048 entries, a loop the compiler vectorizes) rather
+// than per drawn sample: measured cheaper even for the 1672-sample 4:2:0 chroma templates.
 void fill_gaussian_batched(int16_t* out, int count, uint16_t seed, int shift) {
     const int round = (1 << shift) >> 1;  // Round2(x, 0) is x
     int16_t table[kGaussianSequenceSize];

@@ -1,7 +1,8 @@
 // Optimized twins of generate_luma_template / generate_chroma_template
 // (grain_template_generation.hpp, the scalar reference of AV1 spec 7.18.3.3): the same
-// templates, bit for bit, with the Gaussian fill drawing four random numbers per LFSR
-// update and the auto-regressive filter in vector lanes (simd/grain_ar_filter.hpp).
+// templates, bit for bit, with the Gaussian fill drawing eight random numbers per LFSR
+// update and the auto-regressive filter's rows-above taps in vector lanes
+// (simd/grain_ar_filter.hpp).
 // Tested equal to the reference on random parameters for every dispatch target
 // (tests/unit/simd_av1_template_equivalence_test.cpp).
 #pragma once

@@ -84,7 +84,7 @@ template <int Lag>
 void AboveScalar(const ArFilterJob& j, const int16_t* row, const int16_t* lrow, int luma_coeff, int x0, int x1,
                  int32_t* partial) {
     for (int x = x0; x < x1; ++x) {
-        int sum = (row[x] << j.shift) + (1 << (j.shift - 1)), pos = 0;
+        int sum = row[x] * (1 << j.shift) + (1 << (j.shift - 1)), pos = 0;
         for (int dy = -Lag; dy < 0; ++dy)
             for (int dx = -Lag; dx <= Lag; ++dx)
                 sum += j.coeffs[pos++] * row[static_cast<std::ptrdiff_t>(dy) * j.width + x + dx];
