@@ -1,13 +1,15 @@
 // Per-frame synthesis time of both models (Google Benchmark): 1280x720, 1920x1080 and
-// 3840x2160, 8- and 10-bit 4:2:0, 1 and 2 threads, scalar reference vs optimized kernels.
-// Contexts are created once and reused, as a decoder would, so the numbers are the steady
-// state (templates built, buffers grown). Not part of the test suite.
+// 3840x2160, 8- and 10-bit 4:2:0, 1 and 2 threads, scalar reference vs optimized kernels,
+// and one frame copy of each size (the bound synthesis is compared with). Contexts are
+// created once and reused, as a decoder would, so the numbers are the steady state
+// (templates built, buffers grown). Not part of the test suite; tools/bench-compare runs it.
 //
 //   build/filmgrain_bench [--benchmark_filter=Av1/1920] [--benchmark_repetitions=5]
 //   FILMGRAIN_SIMD_TARGET=SSE4 build/filmgrain_bench   # force a vector target
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <random>
 
 #include "av1/av1_synthesis.hpp"
@@ -104,6 +106,22 @@ void BM_Av1(benchmark::State& state) {
     state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// args: width, height, bit depth. Copying every row of every plane once: what a decoder
+// that hands out a separate output frame pays at least, grain or not.
+void BM_FrameCopy(benchmark::State& state) {
+    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
+    FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
+    const FrameView s = in.view(), d = out.view();
+    for (auto _ : state) {
+        for (int p = 0; p < s.plane_count(); p++)
+            for (int y = 0; y < s.planes[p].height; y++)
+                std::memcpy(d.planes[p].data + d.planes[p].stride * y, s.planes[p].data + s.planes[p].stride * y,
+                            std::size_t(s.planes[p].width) * std::size_t(s.bytes_per_sample()));
+        benchmark::DoNotOptimize(out.bytes());
+        benchmark::ClobberMemory();
+    }
+}
+
 void sizes(benchmark::internal::Benchmark* b, bool flavours) {
     const int dims[3][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
     for (auto& d : dims)
@@ -123,6 +141,13 @@ void sizes(benchmark::internal::Benchmark* b, bool flavours) {
 
 BENCHMARK(BM_Fgc)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, true); });
 BENCHMARK(BM_Av1)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, false); });
+BENCHMARK(BM_FrameCopy)
+    ->ArgsProduct({{1280}, {720}, {8, 10}})
+    ->ArgsProduct({{1920}, {1080}, {8, 10}})
+    ->ArgsProduct({{3840}, {2160}, {8, 10}})
+    ->ArgNames({"w", "h", "bd"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

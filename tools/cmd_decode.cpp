@@ -31,6 +31,7 @@ struct DecodeOptions {
     std::string input, output, format, flavour = "rdd5";
     bool quiet = false;
     bool no_grain = false;
+    int threads = 0;
 };
 
 #ifdef FILMGRAIN_HAVE_LIBAV
@@ -76,12 +77,14 @@ int run_decode(const DecodeOptions& o) {
             throw Error(ErrorCode::kInvalidArgument, "--format '" + o.format + "' is not known (allowed y4m, yuv)");
         y4m = o.format == "y4m";
     }
-    libav::VideoDecoder decoder(o.input);
+    libav::VideoDecoder decoder(o.input, o.threads);
     const libav::StreamDescription& d = decoder.description();
 
     FgcOptions fo;
     fo.flavour = flavour;
+    fo.threads = o.threads;
     std::unique_ptr<FgcSynthesizer> fgc;
+    std::unique_ptr<av1::Av1Synthesizer> av1_synth;
     std::unique_ptr<vfgs::Synthesizer> vfgs_synth;
     std::unique_ptr<VideoWriter> writer;
     VideoInfo info;
@@ -109,7 +112,8 @@ int run_decode(const DecodeOptions& o) {
         if (o.no_grain) {
             // the decoder's output as it is: the clean pictures grain is added to
         } else if (frame.av1) {
-            av1::apply_film_grain(*frame.av1, v, v, frame.matrix_coefficients);
+            if (!av1_synth) av1_synth = std::make_unique<av1::Av1Synthesizer>(o.threads);
+            av1_synth->apply(*frame.av1, v, v, frame.matrix_coefficients);
             with_grain++;
         } else if (frame.fgc) {
             if (flavour == FgcFlavour::kVfgs) {
@@ -156,7 +160,13 @@ void register_decode(CLI::App& app) {
     sub->add_option("--output,-o", o->output, "output: .y4m, .yuv (raw planar), or - for Y4M on stdout")->required();
     sub->add_option("--format", o->format, "y4m or yuv (default: from the output name; Y4M for -)");
     sub->add_option("--flavour", o->flavour, "FGC SEI model: rdd5, vtm or vfgs")->capture_default_str();
-    sub->add_flag("--no-grain", o->no_grain, "write the decoded pictures without film grain");
+    sub->add_flag("--no-grain", o->no_grain,
+                  "write the decoded pictures without film grain (the same decoding and writing, no synthesis: "
+                  "the baseline tools/bench-compare subtracts)");
+    sub->add_option("--threads", o->threads,
+                    "threads of the decoder and of grain synthesis per frame (0: all cores; the output is the same "
+                    "for any count)")
+        ->check(CLI::NonNegativeNumber);
     sub->add_flag("--quiet,-q", o->quiet, "no progress or messages on stderr except errors");
     sub->callback([o]() {
         if (int rc = run_decode(*o)) throw CLI::RuntimeError(rc);

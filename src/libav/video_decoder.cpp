@@ -62,7 +62,7 @@ struct VideoDecoder::State {
     }
 };
 
-VideoDecoder::VideoDecoder(const std::string& path) : s_(std::make_unique<State>()) {
+VideoDecoder::VideoDecoder(const std::string& path, int threads) : s_(std::make_unique<State>()) {
     av_log_set_level(AV_LOG_ERROR);
     int err = avformat_open_input(&s_->fmt, path.c_str(), nullptr, nullptr);
     if (err < 0) throw Error(ErrorCode::kIo, "cannot open '" + path + "': " + av_error_text(err));
@@ -88,6 +88,8 @@ VideoDecoder::VideoDecoder(const std::string& path) : s_(std::make_unique<State>
     if ((err = avcodec_parameters_to_context(s_->ctx, st->codecpar)) < 0)
         throw Error(ErrorCode::kIo, "codec parameters: " + av_error_text(err));
     s_->ctx->export_side_data |= AV_CODEC_EXPORT_DATA_FILM_GRAIN;
+    if (threads < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("threads", threads, 0, 1 << 16));
+    s_->ctx->thread_count = threads;
     if ((err = avcodec_open2(s_->ctx, codec, nullptr)) < 0)
         throw Error(ErrorCode::kUnsupported, "cannot open decoder '" + std::string(codec->name) + "': " + av_error_text(err));
     s_->pkt = av_packet_alloc();

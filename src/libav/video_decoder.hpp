@@ -36,7 +36,9 @@ struct StreamDescription {
 
 class VideoDecoder {
 public:
-    explicit VideoDecoder(const std::string& path);  // throws Error(kIo / kUnsupported)
+    // threads: the decoder's own threads (AVCodecContext::thread_count; 0 = libavcodec's
+    // automatic choice, every core). Throws Error(kIo / kUnsupported).
+    explicit VideoDecoder(const std::string& path, int threads = 0);
     ~VideoDecoder();
     VideoDecoder(const VideoDecoder&) = delete;
     VideoDecoder& operator=(const VideoDecoder&) = delete;

@@ -39,7 +39,10 @@ TEST_P(DecodeAv1, BitExactWithDav1dGrain) {
     ASSERT_TRUE(run_or_fail("dav1d --quiet -i " + q(dir / "g.ivf") + " -o " + q(dir / "dav1d.yuv")));
     ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "g.ivf") + " -o " + q(dir / "ours.yuv")));
     ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(dir / "g.ivf") + " -o " + q(dir / "clean.yuv")));
+    // one decoder thread and one synthesis thread (the benchmark's setting) give the same pictures
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --threads 1 " + q(dir / "g.ivf") + " -o " + q(dir / "ours1.yuv")));
     const auto ref = read_bytes(dir / "dav1d.yuv"), ours = read_bytes(dir / "ours.yuv"), clean = read_bytes(dir / "clean.yuv");
+    EXPECT_TRUE(read_bytes(dir / "ours1.yuv") == ours) << "--threads 1 changes the output";
     const std::size_t frame_bytes = std::size_t(96 * 64 * 3 / 2) * (c.bit_depth > 8 ? 2 : 1);
     ASSERT_EQ(ref.size(), 4 * frame_bytes);
     ASSERT_EQ(ours.size(), ref.size());
@@ -78,6 +81,10 @@ TEST(DecodeH265, EqualsApplyWithExtractedParams) {
         const std::string f = std::string(" --flavour ") + flavour + " ";
         ASSERT_TRUE(run_or_fail(tool() + " decode -q" + f + q(dir / "fgc.hevc") + " -o " + q(dir / "decoded.yuv")));
         ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(dir / "fgc.hevc") + " -o " + q(dir / "clean.yuv")));
+        ASSERT_TRUE(run_or_fail(tool() + " decode -q --threads 1" + f + q(dir / "fgc.hevc") + " -o " +
+                                q(dir / "decoded1.yuv")));
+        ASSERT_TRUE(run_or_fail(tool() + " decode -q --threads 1 --no-grain " + q(dir / "fgc.hevc") + " -o " +
+                                q(dir / "clean1.yuv")));
         ASSERT_TRUE(run_or_fail(tool() + " params extract -q " + q(dir / "fgc.hevc") + " -o " + q(dir / "p.json")));
         ASSERT_TRUE(run_or_fail(tool() + " apply -q" + f + "--size 160x128 --pix-fmt yuv420p -i " + q(dir / "clean.yuv") +
                                 " -p " + q(dir / "p.json") + " -o " + q(dir / "applied.yuv")));
@@ -85,6 +92,8 @@ TEST(DecodeH265, EqualsApplyWithExtractedParams) {
                    clean = read_bytes(dir / "clean.yuv");
         ASSERT_EQ(decoded.size(), std::size_t(12 * 160 * 128 * 3 / 2));
         EXPECT_TRUE(decoded == applied) << "decode and apply differ";
+        EXPECT_TRUE(read_bytes(dir / "decoded1.yuv") == decoded) << "--threads 1 changes the output";
+        EXPECT_TRUE(read_bytes(dir / "clean1.yuv") == clean) << "--threads 1 changes the decoded pictures";
         EXPECT_NE(decoded, clean);
     }
     fs::remove_all(dir);
