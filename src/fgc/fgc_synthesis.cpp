@@ -39,8 +39,15 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     std::size_t n = 0;
     for (const auto& st : states_) n += st.capacity() * sizeof(uint32_t);
     for (const auto& s : scratch_)
-        n += s.stripe.capacity() * sizeof(int32_t) + s.stripe16.capacity() * sizeof(int16_t) +
-             s.sums.capacity() * sizeof(uint32_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
+        n += s.stripe.capacity() * sizeof(int32_t) + s.sums.capacity() * sizeof(uint32_t) +
+             s.blocks.capacity() * sizeof(const int16_t*) + s.row.capacity() * sizeof(int16_t) +
+             s.scaled.capacity() * sizeof(int16_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
+    return n;
+}
+
+std::size_t FgcFrameSynthesis::scaled_template_bytes() const {
+    std::size_t n = 0;
+    for (const auto& t : scaled_) n += t.bytes();
     return n;
 }
 
@@ -109,92 +116,112 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
     }
 }
 
-// Optimized twin of reference_stripe: block sums, template copies and the fused
-// deblocking + blending run as vector kernels on an int16 stripe; blocks that touch the
-// picture's right or bottom edge take their averages from the reference functions.
-template <typename Pixel>
+// Optimized twin of reference_stripe, for one block size. The block sums (a vector kernel)
+// give each block its interval; a block's grain is then a pointer into that interval's
+// scaled template (ScaledTemplates: the reference's per-sample products, made once per
+// parameter set), or into stripe scratch scaled block by block when the component has too
+// many intervals for tables. Row by row, the blocks' rows are copied into one grain row of
+// a few KiB, which the fused deblocking + blending kernel adds to the picture: the grain of
+// a whole stripe is never written out. Blocks that touch the picture's right or bottom
+// edge take their averages from the reference functions.
+template <typename Pixel, int kBlock>
 void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,
                                          const PlaneView& dst, int bit_depth, int by, Scratch& scratch) const {
+    constexpr int kRandBlock = kBlock == 32 ? 32 : 16;
+    constexpr int kSub = kRandBlock / kBlock;  // adaptation blocks per randomization block, each direction
+    constexpr int kLog2Area = kBlock == 8 ? 6 : kBlock == 16 ? 8 : 10;
     const ResolvedComponent& comp = params.comp[c];
-    const int bs = block_size_;
-    const int rb = bs == 32 ? 32 : 16;
     const int w = src.width, h = src.height;
-    const int blocks_x = (w + rb - 1) / rb;
+    const int blocks_x = (w + kRandBlock - 1) / kRandBlock;
+    const int columns = blocks_x * kSub;  // block columns of the stripe, including those past the edge
+    const int grain_width = blocks_x * kRandBlock;
+    const int whole_blocks = w / kBlock;
     const bool rdd5 = flavour_ != FgcFlavour::kVtm;
-    const int shift = params.log2_scale_factor + 6;
-    const uint32_t* states = states_[c].data();
-    const int stride = blocks_x * rb + 2;
-    const int sub_rows = bs == 8 ? 2 : 1, sub_cols = bs == 8 ? 2 : 1;
-    const int whole_blocks = w / bs;
-    const int log2_area = bs == 8 ? 6 : bs == 16 ? 8 : 10;
+    const bool tables = have_scaled_[c];
+    const uint32_t* states = states_[c].data() + std::size_t(by) * std::size_t(blocks_x);
+    const int y_top = by * kRandBlock;
 
-    if (scratch.stripe16.size() < std::size_t(stride) * rb) scratch.stripe16.resize(std::size_t(stride) * rb);
-    if (scratch.sums.size() < std::size_t(blocks_x) * 2 * sub_rows)
-        scratch.sums.resize(std::size_t(blocks_x) * 2 * sub_rows);
-    if (scratch.copies.size() < std::size_t(blocks_x) * 4) scratch.copies.resize(std::size_t(blocks_x) * 4);
-    int16_t* stripe = scratch.stripe16.data();
-    std::fill(stripe, stripe + std::ptrdiff_t(stride) * rb, int16_t(0));
-
-    // Block sums of each row of adaptation blocks in this stripe (whole blocks only).
-    const int blocks_per_row = blocks_x * sub_cols;
-    uint32_t* sums = scratch.sums.data();
-    for (int yi = 0; yi < sub_rows; yi++) {
-        const int y0 = by * rb + yi * bs;
-        const int rows_inside = std::min(bs, h - y0);
-        if (rows_inside <= 0 || (!rdd5 && rows_inside < bs)) continue;
-        const Pixel* row0 = src.row<const Pixel>(y0);
-        if constexpr (sizeof(Pixel) == 1)
-            simd::block_sums_u8(row0, src.stride, rows_inside, w, bs, sums + yi * blocks_per_row);
-        else
-            simd::block_sums_u16(row0, src.stride, rows_inside, w, bs, sums + yi * blocks_per_row);
-    }
-
+    const int16_t** blocks = scratch.blocks.data();
     int copies = 0;
-    for (int bx = 0; bx < blocks_x; bx++) {
-        const BlockOffset off = block_offset_from_state(states[std::size_t(by) * blocks_x + bx], bs);
-        const int sub_count = bs == 8 ? 4 : 1;
-        for (int sub = 0; sub < sub_count; sub++) {
-            const int xo = bs == 8 ? (sub & 1) * 8 : 0, yo = bs == 8 ? (sub >> 1) * 8 : 0;
-            const int x0 = bx * rb + xo, y0 = by * rb + yo;
-            const int rows_inside = std::min(bs, h - y0);
-            const bool whole_columns = x0 / bs < whole_blocks;
+    for (int yi = 0; yi < kSub; yi++) {
+        const int y0 = y_top + yi * kBlock;
+        const int rows_inside = std::min(kBlock, h - y0);
+        const int16_t** block_row = blocks + yi * columns;
+        if (rows_inside <= 0) {  // below the picture: these rows are never blended
+            std::fill(block_row, block_row + columns, nullptr);
+            continue;
+        }
+        uint32_t* sums = scratch.sums.data() + yi * columns;
+        if (rdd5 || rows_inside == kBlock) {
+            if constexpr (sizeof(Pixel) == 1)
+                simd::block_sums_u8(src.row<const Pixel>(y0), src.stride, rows_inside, w, kBlock, sums);
+            else
+                simd::block_sums_u16(src.row<const Pixel>(y0), src.stride, rows_inside, w, kBlock, sums);
+        }
+        for (int j = 0; j < columns; j++) {
+            const int x0 = j * kBlock;
             int avg;
-            int cols = bs;
             if (rdd5) {
-                if (x0 >= w || y0 >= h) continue;
-                if (whole_columns) {
-                    const uint32_t sum = sums[(yo / bs) * blocks_per_row + x0 / bs];
-                    // a whole block divides by 2^log2_area: the same as a shift for unsigned sums
-                    const uint32_t mean = rows_inside == bs ? sum >> log2_area : sum / uint32_t(bs * rows_inside);
+                if (x0 >= w) {  // HM-2020 writes grain only inside the picture
+                    block_row[j] = nullptr;
+                    continue;
+                }
+                if (j < whole_blocks) {
+                    // a whole block divides by 2^kLog2Area: the same as a shift for unsigned sums
+                    const uint32_t mean =
+                        rows_inside == kBlock ? sums[j] >> kLog2Area : sums[j] / uint32_t(kBlock * rows_inside);
                     avg = int(std::min<uint32_t>(mean >> (bit_depth - 8), 255));
                 } else {
-                    avg = block_average_inside<Pixel>(src, x0, y0, bs, bit_depth);
+                    avg = block_average_inside<Pixel>(src, x0, y0, kBlock, bit_depth);
                 }
-                cols = std::min(bs, w - x0);
-            } else if (whole_columns && rows_inside == bs) {
-                const uint64_t sum = sums[(yo / bs) * blocks_per_row + x0 / bs];
-                avg = int(std::min<uint64_t>(sum >> (log2_area + bit_depth - 8), 255));
+            } else if (j < whole_blocks && rows_inside == kBlock) {
+                avg = int(std::min<uint32_t>(sums[j] >> (kLog2Area + bit_depth - 8), 255));
             } else {
-                avg = block_average_replicated<Pixel>(src, x0, y0, bs, bit_depth);
+                avg = block_average_replicated<Pixel>(src, x0, y0, kBlock, bit_depth);
             }
-            const int iv = comp.interval_of_intensity[avg];
-            if (iv < 0) continue;
-            const ResolvedInterval& ri = comp.intervals[iv];
-            const GrainTemplate& t = cache_.get(ri.cutoff_h, ri.cutoff_v);
-            scratch.copies[std::size_t(copies++)] = {t[off.y + yo].data() + off.x + xo,
-                                                     stripe + std::size_t(yo) * stride + x0, off.sign * ri.scale, cols};
+            const int iv = comp.interval_of_intensity[std::size_t(avg)];
+            if (iv < 0) {  // no interval: this block gets no grain
+                block_row[j] = nullptr;
+                continue;
+            }
+            const uint32_t state = states[j / kSub];
+            const BlockOffset off = block_offset_from_state(state, kBlock);
+            const int offset = (off.y + yi * kBlock) * kTemplateSize + off.x + (j % kSub) * kBlock;
+            if (tables) {
+                block_row[j] = scaled_[c].table(iv, state & 1u) + offset;
+            } else {
+                const ResolvedInterval& ri = comp.intervals[std::size_t(iv)];
+                int16_t* out = scratch.scaled.data() + std::size_t(copies) * kBlock * kBlock;
+                scratch.copies[std::size_t(copies++)] = {cache_.get(ri.cutoff_h, ri.cutoff_v)[0].data() + offset, out,
+                                                         off.sign * ri.scale, kBlock};
+                block_row[j] = out;
+            }
         }
     }
-    simd::scale_template_blocks(scratch.copies.data(), copies, bs, shift, stride);
+    if (!tables)
+        simd::scale_template_blocks(scratch.copies.data(), copies, kBlock, params.log2_scale_factor + 6, kBlock);
+    const std::ptrdiff_t pitch = tables ? kTemplateSize : kBlock;
 
-    const int rows = std::min(rb, h - by * rb);
+    // rdd5 has no grain at or past the right edge; both have two zero columns of padding,
+    // which the deblocking of the last edge reads
+    const int zero_from = rdd5 ? w : grain_width;
+    int16_t* g = scratch.row.data();
+    const int rows = std::min(kRandBlock, h - y_top);
     for (int l = 0; l < rows; l++) {
-        const int y = by * rb + l;
-        const int16_t* g = stripe + std::size_t(l) * stride;
+        const int16_t* const* block_row = blocks + (l / kBlock) * columns;
+        const std::ptrdiff_t r = std::ptrdiff_t(l % kBlock) * pitch;
+        for (int j = 0; j < columns; j++) {
+            if (block_row[j])
+                std::memcpy(g + j * kBlock, block_row[j] + r, sizeof(int16_t) * kBlock);
+            else
+                std::memset(g + j * kBlock, 0, sizeof(int16_t) * kBlock);
+        }
+        std::fill(g + zero_from, g + grain_width + 2, int16_t(0));
+        const int y = y_top + l;
         if constexpr (sizeof(Pixel) == 1)
-            simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, bs);
+            simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
         else
-            simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, bs, bit_depth);
+            simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
     }
 }
 
@@ -223,14 +250,27 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
     // Every worker's buffers are sized here, on the calling thread, for the widest plane:
     // a worker that got no stripe in the first frames cannot allocate later.
     const int blocks_x = (src.width + rb - 1) / rb;
-    const std::size_t stripe_size = std::size_t(blocks_x * rb + 2) * rb;
+    bool all_tables = true;
+    if (kernels_ == Kernels::kOptimized)
+        for (int c = 0; c < src.plane_count() && c < 3; c++)
+            if (!params.cancelled && params.comp[c].present) {
+                have_scaled_[c] = scaled_[c].update(params.comp[c], cache_, params.log2_scale_factor + 6);
+                all_tables &= have_scaled_[c];
+            }
+    auto grow = [](auto& v, std::size_t n) {
+        if (v.size() < n) v.resize(n);
+    };
     for (auto& s : scratch_) {
         if (kernels_ == Kernels::kReference) {
-            if (s.stripe.size() < stripe_size) s.stripe.resize(stripe_size);
+            grow(s.stripe, std::size_t(blocks_x * rb + 2) * rb);
         } else {
-            if (s.stripe16.size() < stripe_size) s.stripe16.resize(stripe_size);
-            if (s.sums.size() < std::size_t(blocks_x) * 4) s.sums.resize(std::size_t(blocks_x) * 4);
-            if (s.copies.size() < std::size_t(blocks_x) * 4) s.copies.resize(std::size_t(blocks_x) * 4);
+            grow(s.sums, std::size_t(blocks_x) * 4);
+            grow(s.blocks, std::size_t(blocks_x) * 4);
+            grow(s.row, std::size_t(blocks_x * rb + 2));
+            if (!all_tables) {
+                grow(s.scaled, std::size_t(blocks_x) * rb * rb);
+                grow(s.copies, std::size_t(blocks_x) * 4);
+            }
         }
     }
     pool_->parallel_for(first_task[3], [&](int task, int worker) {
@@ -244,11 +284,14 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
                 reference_stripe<uint8_t>(params, c, s, d, src.bit_depth, by, scratch);
             else
                 reference_stripe<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
+        } else if (bps == 1) {
+            if (block_size_ == 8) optimized_stripe<uint8_t, 8>(params, c, s, d, src.bit_depth, by, scratch);
+            else if (block_size_ == 16) optimized_stripe<uint8_t, 16>(params, c, s, d, src.bit_depth, by, scratch);
+            else optimized_stripe<uint8_t, 32>(params, c, s, d, src.bit_depth, by, scratch);
         } else {
-            if (bps == 1)
-                optimized_stripe<uint8_t>(params, c, s, d, src.bit_depth, by, scratch);
-            else
-                optimized_stripe<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
+            if (block_size_ == 8) optimized_stripe<uint16_t, 8>(params, c, s, d, src.bit_depth, by, scratch);
+            else if (block_size_ == 16) optimized_stripe<uint16_t, 16>(params, c, s, d, src.bit_depth, by, scratch);
+            else optimized_stripe<uint16_t, 32>(params, c, s, d, src.bit_depth, by, scratch);
         }
     });
 }

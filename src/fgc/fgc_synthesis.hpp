@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fgc/params_resolution.hpp"
+#include "fgc/scaled_templates.hpp"
 #include "fgc/simd/fgc_kernels.hpp"
 #include "fgc/template_generation.hpp"
 #include "filmgrain/frame.hpp"
@@ -44,23 +45,28 @@ public:
 
     int block_size() const { return block_size_; }
     const TemplateCache& templates() const { return cache_; }
+    // Bytes of the scaled template tables of the optimized path (ScaledTemplates).
+    std::size_t scaled_template_bytes() const;
 
     int threads() const;
-    // Bytes of working memory held besides the templates (stripe buffers, block states).
+    // Bytes of working memory held besides the templates and their scaled copies (stripe
+    // buffers, block states).
     std::size_t scratch_bytes() const;
 
 private:
-    // One thread's stripe buffers, grown on the first frame and reused.
+    // One thread's stripe buffers, grown on the calling thread in apply() and reused.
     struct Scratch {
-        std::vector<int32_t> stripe;      // reference path
-        std::vector<int16_t> stripe16;    // optimized path
-        std::vector<uint32_t> sums;       // block sums of one block row
-        std::vector<simd::BlockCopy> copies;  // template copies of one block row
+        std::vector<int32_t> stripe;          // reference path
+        std::vector<uint32_t> sums;           // block sums of the stripe's block rows
+        std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
+        std::vector<int16_t> row;             // optimized path: one grain row of the stripe
+        std::vector<int16_t> scaled;          // components without scaled tables: blocks scaled here
+        std::vector<simd::BlockCopy> copies;  // ... by these copies
     };
     template <typename Pixel>
     void reference_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
                           int by, Scratch& scratch) const;
-    template <typename Pixel>
+    template <typename Pixel, int kBlock>
     void optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
                           int by, Scratch& scratch) const;
 
@@ -70,6 +76,8 @@ private:
     TemplateCache cache_;
     std::unique_ptr<ThreadPool> pool_;
     std::vector<uint32_t> states_[3];
+    ScaledTemplates scaled_[3];
+    bool have_scaled_[3] = {false, false, false};
     std::vector<Scratch> scratch_;
 };
 

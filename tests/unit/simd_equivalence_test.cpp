@@ -408,6 +408,77 @@ TEST_P(SimdEquivalence, FgcWholeFrames) {
     EXPECT_GE(synthesized, 15) << "too few random parameter sets were valid to prove anything";
 }
 
+// Many narrow intervals (more than ScaledTemplates::kMaxIntervals, so blocks are scaled as
+// they are used) and few wide ones (scaled tables) alternate through one optimized
+// synthesizer: the tables must follow every change of the parameter set.
+TEST_P(SimdEquivalence, FgcChangingSetsAndManyIntervals) {
+    auto many_intervals = [&](int bd) {
+        // at most 10 distinct cut-off pairs in a set (RDD 5 / HM): draw from four
+        const int cutoffs[4][2] = {{uniform(2, 14), uniform(2, 14)}, {8, 8}, {uniform(2, 14), 4}, {14, uniform(2, 14)}};
+        FgcParams p;
+        p.log2_scale_factor = uniform(3, 6);
+        for (int c = 0; c < 3; c++) {
+            auto& m = p.comp[std::size_t(c)];
+            m.comp_model_present_flag = true;
+            m.num_model_values_minus1 = 2;
+            for (int lo = 0; lo <= 255;) {
+                const int hi = std::min(255, lo + uniform(0, 11));
+                const auto& cut = cutoffs[uniform(0, 3)];
+                m.intervals.push_back({lo, hi, {uniform(0, 255) << (bd - 8) >> uniform(0, bd - 8), cut[0], cut[1]}});
+                lo = hi + 1;
+            }
+        }
+        return p;
+    };
+    int synthesized = 0, scaled_as_used = 0;
+    for (int iter = 0; iter < 8; iter++) {
+        const int bd = uniform(0, 1) ? 8 : 10;
+        FgcOptions o;
+        o.flavour = uniform(0, 1) ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
+        // vtm takes HM's picture sizes only (128.. samples, multiples of 4)
+        const bool vtm = o.flavour == FgcFlavour::kVtm;
+        const int w = vtm ? 4 * uniform(32, 50) : uniform(17, 150), h = vtm ? 4 * uniform(32, 40) : uniform(9, 90);
+        o.block_size = o.flavour == FgcFlavour::kVtm ? 8 << uniform(0, 2) : 0;
+        o.threads = uniform(1, 2);
+        FgcSynthesizer fast(o);
+        FgcParams params;
+        for (int frame = 0; frame < 6; frame++) {
+            // a new set, then the same set with one value changed (the tables must notice), ...
+            if (frame == 2)
+                params = many_intervals(bd);
+            else if (frame % 3 == 0)
+                params = random_fgc_params(rng, bd);
+            else if (frame == 1)
+                params.log2_scale_factor = params.log2_scale_factor == 7 ? 2 : params.log2_scale_factor + 1;
+            else
+                for (auto& m : params.comp)
+                    if (!m.intervals.empty()) m.intervals[0].comp_model_value[0] ^= 1;
+            for (auto& m : params.comp) scaled_as_used += m.intervals.size() > 16;
+            FgcOptions ref = o;
+            ref.reference_kernels = true;
+            ref.threads = 1;
+            FgcSynthesizer slow(ref);
+            StridedFrame src(w, h, ChromaFormat::k420, bd, uniform(0, 9), false, rng);
+            StridedFrame want = src, got = src;
+            const FgcPictureIds ids{frame, 0};
+            slow.receive_sei(params);
+            fast.receive_sei(params);
+            try {
+                slow.apply(src.view, want.view, ids);
+            } catch (const Error&) {
+                EXPECT_THROW(fast.apply(src.view, got.view, ids), Error);
+                continue;
+            }
+            fast.apply(src.view, got.view, ids);
+            ASSERT_EQ(got.diff(want), "") << "iteration " << iter << " frame " << frame << " " << w << "x" << h
+                                          << " bd " << bd << " flavour " << int(o.flavour);
+            synthesized++;
+        }
+    }
+    EXPECT_GE(synthesized, 24);
+    EXPECT_GT(scaled_as_used, 0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Targets, SimdEquivalence, ::testing::ValuesIn(simd::available_targets()),
                          [](const ::testing::TestParamInfo<simd::Target>& i) { return i.param.name; });
 

@@ -1,0 +1,47 @@
+// The templates of one component's intensity intervals already scaled for blending: for each
+// interval and block sign, (sign * scale * template) >> (log2_scale_factor + 6) (RDD 5 4.3,
+// TR 23002-9 7.3.2) as int16. The optimized stripes then copy a block's rows instead of
+// multiplying every sample of every block; the values are the ones the reference computes
+// per sample, so the output is unchanged.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "fgc/params_resolution.hpp"
+#include "fgc/template_generation.hpp"
+
+namespace filmgrain::fgc {
+
+class ScaledTemplates {
+public:
+    // Two 8 KiB tables per interval: above this count a component's blocks are scaled as
+    // they are used instead, which keeps the memory of a context near that of its raw
+    // templates whatever the SEI signals (up to 256 intervals per component).
+    static constexpr int kMaxIntervals = 16;
+
+    // Makes the tables for `comp` (whose templates `cache` holds) unless they are already
+    // there for the same scales, cut-offs and shift: allocates only when the parameters
+    // change. Returns false, keeping nothing, when the component has more than
+    // kMaxIntervals intervals. Not thread-safe: call before the stripes run.
+    bool update(const ResolvedComponent& comp, const TemplateCache& cache, int shift);
+
+    // Row 0 of interval `interval`'s table for the sign of LFSR state bit 0 (`negative`);
+    // rows are 64 values apart, as in the raw template.
+    const int16_t* table(int interval, uint32_t negative) const {
+        return data_.data() + (std::size_t(interval) * 2 + negative) * kTemplateSize * kTemplateSize;
+    }
+    std::size_t bytes() const { return data_.capacity() * sizeof(int16_t); }
+
+private:
+    struct Key {
+        int scale, cutoff_h, cutoff_v;
+        bool operator==(const Key&) const = default;
+    };
+    std::vector<Key> keys_;
+    int shift_ = -1;
+    bool valid_ = false;
+    std::vector<int16_t> data_;
+};
+
+}  // namespace filmgrain::fgc
