@@ -40,7 +40,8 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     for (const auto& st : states_) n += st.capacity() * sizeof(uint32_t);
     for (const auto& s : scratch_)
         n += s.stripe.capacity() * sizeof(int32_t) + s.sums.capacity() * sizeof(uint32_t) +
-             s.blocks.capacity() * sizeof(const int16_t*) + s.row.capacity() * sizeof(int16_t) +
+             s.blocks.capacity() * sizeof(const int16_t*) + s.origins.capacity() * sizeof(int32_t) +
+             s.row.capacity() * sizeof(int16_t) +
              s.scaled.capacity() * sizeof(int16_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
     return n;
 }
@@ -124,6 +125,10 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
 // a few KiB, which the fused deblocking + blending kernel adds to the picture: the grain of
 // a whole stripe is never written out. Blocks that touch the picture's right or bottom
 // edge take their averages from the reference functions.
+// Blocks without grain point here: zeros for any block row at either pitch.
+alignas(64) constexpr int16_t kZeroGrain[kTemplateSize * 32] = {};
+constexpr const int16_t* kNoGrain = kZeroGrain;
+
 template <typename Pixel, int kBlock>
 void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,
                                          const PlaneView& dst, int bit_depth, int by, Scratch& scratch) const {
@@ -141,6 +146,15 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     const uint32_t* states = states_[c].data() + std::size_t(by) * std::size_t(blocks_x);
     const int y_top = by * kRandBlock;
 
+    // Each randomization block's position in the template and its sign, as an offset into
+    // an interval's pair of scaled tables (the negative table follows the positive one).
+    int32_t* origins = scratch.origins.data();
+    for (int b = 0; b < blocks_x; b++) {
+        const BlockOffset off = block_offset_from_state(states[b], kBlock);
+        origins[b] = off.y * kTemplateSize + off.x + int32_t(states[b] & 1u) * kTemplateSize * kTemplateSize;
+    }
+    const int16_t* table0 = tables ? scaled_[c].table(0, 0) : nullptr;
+    constexpr std::ptrdiff_t kIntervalPitch = 2 * kTemplateSize * kTemplateSize;
     const int16_t** blocks = scratch.blocks.data();
     int copies = 0;
     for (int yi = 0; yi < kSub; yi++) {
@@ -148,7 +162,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
         const int rows_inside = std::min(kBlock, h - y0);
         const int16_t** block_row = blocks + yi * columns;
         if (rows_inside <= 0) {  // below the picture: these rows are never blended
-            std::fill(block_row, block_row + columns, nullptr);
+            std::fill(block_row, block_row + columns, kNoGrain);
             continue;
         }
         uint32_t* sums = scratch.sums.data() + yi * columns;
@@ -158,12 +172,25 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
             else
                 simd::block_sums_u16(src.row<const Pixel>(y0), src.stride, rows_inside, w, kBlock, sums);
         }
-        for (int j = 0; j < columns; j++) {
+        const int row_offset = yi * kBlock * kTemplateSize;
+        int j = 0;
+        if (tables && rows_inside == kBlock) {
+            // Whole blocks, the bulk of the picture: both flavours shift the sum by
+            // log2(area) + bd - 8 (rdd5 divides by the area, exactly a shift here).
+            const int avg_shift = kLog2Area + bit_depth - 8;
+            for (; j < whole_blocks; j++) {
+                const int iv = comp.interval_of_intensity[std::min<uint32_t>(sums[j] >> avg_shift, 255)];
+                block_row[j] = iv < 0 ? kNoGrain
+                                      : table0 + iv * kIntervalPitch + origins[j / kSub] + row_offset +
+                                            (j % kSub) * kBlock;
+            }
+        }
+        for (; j < columns; j++) {
             const int x0 = j * kBlock;
             int avg;
             if (rdd5) {
                 if (x0 >= w) {  // HM-2020 writes grain only inside the picture
-                    block_row[j] = nullptr;
+                    block_row[j] = kNoGrain;
                     continue;
                 }
                 if (j < whole_blocks) {
@@ -181,15 +208,14 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
             }
             const int iv = comp.interval_of_intensity[std::size_t(avg)];
             if (iv < 0) {  // no interval: this block gets no grain
-                block_row[j] = nullptr;
+                block_row[j] = kNoGrain;
                 continue;
             }
-            const uint32_t state = states[j / kSub];
-            const BlockOffset off = block_offset_from_state(state, kBlock);
-            const int offset = (off.y + yi * kBlock) * kTemplateSize + off.x + (j % kSub) * kBlock;
             if (tables) {
-                block_row[j] = scaled_[c].table(iv, state & 1u) + offset;
+                block_row[j] = table0 + iv * kIntervalPitch + origins[j / kSub] + row_offset + (j % kSub) * kBlock;
             } else {
+                const BlockOffset off = block_offset_from_state(states[j / kSub], kBlock);
+                const int offset = (off.y + yi * kBlock) * kTemplateSize + off.x + (j % kSub) * kBlock;
                 const ResolvedInterval& ri = comp.intervals[std::size_t(iv)];
                 int16_t* out = scratch.scaled.data() + std::size_t(copies) * kBlock * kBlock;
                 scratch.copies[std::size_t(copies++)] = {cache_.get(ri.cutoff_h, ri.cutoff_v)[0].data() + offset, out,
@@ -210,12 +236,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     for (int l = 0; l < rows; l++) {
         const int16_t* const* block_row = blocks + (l / kBlock) * columns;
         const std::ptrdiff_t r = std::ptrdiff_t(l % kBlock) * pitch;
-        for (int j = 0; j < columns; j++) {
-            if (block_row[j])
-                std::memcpy(g + j * kBlock, block_row[j] + r, sizeof(int16_t) * kBlock);
-            else
-                std::memset(g + j * kBlock, 0, sizeof(int16_t) * kBlock);
-        }
+        for (int j = 0; j < columns; j++) std::memcpy(g + j * kBlock, block_row[j] + r, sizeof(int16_t) * kBlock);
         std::fill(g + zero_from, g + grain_width + 2, int16_t(0));
         const int y = y_top + l;
         if constexpr (sizeof(Pixel) == 1)
@@ -266,6 +287,7 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
         } else {
             grow(s.sums, std::size_t(blocks_x) * 4);
             grow(s.blocks, std::size_t(blocks_x) * 4);
+            grow(s.origins, std::size_t(blocks_x));
             grow(s.row, std::size_t(blocks_x * rb + 2));
             if (!all_tables) {
                 grow(s.scaled, std::size_t(blocks_x) * rb * rb);

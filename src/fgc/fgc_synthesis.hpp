@@ -59,6 +59,7 @@ private:
         std::vector<int32_t> stripe;          // reference path
         std::vector<uint32_t> sums;           // block sums of the stripe's block rows
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
+        std::vector<int32_t> origins;         // ... each randomization block's place in the tables
         std::vector<int16_t> row;             // optimized path: one grain row of the stripe
         std::vector<int16_t> scaled;          // components without scaled tables: blocks scaled here
         std::vector<simd::BlockCopy> copies;  // ... by these copies

@@ -96,10 +96,23 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
     const auto last = hn::Set(d16, int16_t(block_size - 1));
     const auto step = hn::Set(d16, int16_t(n));
     auto phase = hn::And(hn::Iota(d16, 1), last);
+    auto blend = [&](int at, auto g) {
+        const auto s = hn::BitCast(d16, hn::PromoteTo(hn::Rebind<uint16_t, decltype(d16)>(), hn::LoadU(d8, src + at)));
+        hn::StoreU(hn::DemoteTo(d8, hn::Add(s, g)), d8, dst + at);
+    };
+    if (n % block_size == 0) {
+        // every vector starts at the same phase: one edge mask for the whole row
+        const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d16)), hn::Eq(phase, last));
+        for (; x + n <= width - 1; x += n) {
+            const auto a = hn::LoadU(d16, grain + x - 1);
+            const auto b = hn::LoadU(d16, grain + x);
+            const auto c = hn::LoadU(d16, grain + x + 1);
+            const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
+            blend(x, hn::IfThenElse(edge, f, b));
+        }
+    }
     for (; x + n <= width - 1; x += n) {
-        const auto g = DeblockedGrain(d16, grain, x, phase, last);
-        const auto s = hn::BitCast(d16, hn::PromoteTo(hn::Rebind<uint16_t, decltype(d16)>(), hn::LoadU(d8, src + x)));
-        hn::StoreU(hn::DemoteTo(d8, hn::Add(s, g)), d8, dst + x);
+        blend(x, DeblockedGrain(d16, grain, x, phase, last));
         phase = hn::And(hn::Add(phase, step), last);
     }
     for (; x < width; x++)
@@ -124,17 +137,23 @@ void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain
     blend1(0);
     const auto step = hn::Set(d32, n);
     auto phase = hn::And(hn::Iota(d32, 1), bs_mask);
-    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), bs_mask)) {
-        const auto a = hn::PromoteTo(d32, hn::LoadU(d16, grain + x - 1));
-        const auto b = hn::PromoteTo(d32, hn::LoadU(d16, grain + x));
-        const auto c = hn::PromoteTo(d32, hn::LoadU(d16, grain + x + 1));
+    auto blend = [&](int at, auto edge) {
+        const auto a = hn::PromoteTo(d32, hn::LoadU(d16, grain + at - 1));
+        const auto b = hn::PromoteTo(d32, hn::LoadU(d16, grain + at));
+        const auto c = hn::PromoteTo(d32, hn::LoadU(d16, grain + at + 1));
         const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
-        const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask));
         const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
-        const auto s = hn::PromoteTo(d32, hn::LoadU(du16, src + x));
+        const auto s = hn::PromoteTo(d32, hn::LoadU(du16, src + at));
         const auto v = hn::Min(hn::Max(hn::Add(s, g), hn::Zero(d32)), vmax);
-        hn::StoreU(hn::DemoteTo(du16, v), du16, dst + x);
+        hn::StoreU(hn::DemoteTo(du16, v), du16, dst + at);
+    };
+    if (n % block_size == 0) {
+        // every vector starts at the same phase: one edge mask for the whole row
+        const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask));
+        for (; x + n <= width - 1; x += n) blend(x, edge);
     }
+    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), bs_mask))
+        blend(x, hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask)));
     for (; x < width; x++) blend1(x);
 }
 
