@@ -78,9 +78,10 @@ HWY_INLINE V DeblockedGrain(D d, const int16_t* grain, int x, V phase, V last) {
     return hn::IfThenElse(edge, f, b);
 }
 
+// bs is 8, 16 or 32: a mask gives x mod bs (a division per sample costs more than the rest)
 inline int32_t deblocked_scalar(const int16_t* g, int x, int width, int bs) {
-    const bool right_of_edge = x % bs == 0 && x > 0;
-    const bool left_of_edge = x % bs == bs - 1 && x + 1 < width;
+    const bool right_of_edge = (x & (bs - 1)) == 0 && x > 0;
+    const bool left_of_edge = (x & (bs - 1)) == bs - 1 && x + 1 < width;
     if (right_of_edge || left_of_edge) return (g[x - 1] + (g[x] << 1) + g[x + 1]) >> 2;
     return g[x];
 }
@@ -165,16 +166,21 @@ void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width,
     const int limit = blocks * block;
     std::fill(sums, sums + blocks, 0u);
     HWY_ALIGN uint64_t lanes[hn::MaxLanes(d64)];
+    const int log2_block = block == 8 ? 3 : block == 16 ? 4 : 5;  // shifts, not divisions
     int x = 0;
     // SumsOf8 needs whole groups of 8 bytes per vector (not so on the one-lane SCALAR target).
     for (; n >= 8 && x + n <= limit; x += n) {
         auto acc = hn::Zero(d64);
         for (int y = 0; y < rows; y++) acc = hn::Add(acc, hn::SumsOf8(hn::LoadU(d8, src + stride * y + x)));
         hn::Store(acc, d64, lanes);
-        for (int i = 0; i < n / 8; i++) sums[(x + 8 * i) / block] += uint32_t(lanes[i]);
+        if (block == 8) {
+            for (int i = 0; i < n / 8; i++) sums[(x >> 3) + i] = uint32_t(lanes[i]);
+        } else {
+            for (int i = 0; i < n / 8; i++) sums[(x + 8 * i) >> log2_block] += uint32_t(lanes[i]);
+        }
     }
     for (; x < limit; x++)
-        for (int y = 0; y < rows; y++) sums[x / block] += src[stride * y + x];
+        for (int y = 0; y < rows; y++) sums[x >> log2_block] += src[stride * y + x];
 }
 
 void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
@@ -186,15 +192,16 @@ void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int widt
     std::fill(sums, sums + blocks, 0u);
     HWY_ALIGN uint32_t lanes[hn::MaxLanes(d32)];
     const std::ptrdiff_t pitch = stride / std::ptrdiff_t(sizeof(uint16_t));
+    const int log2_block = block == 8 ? 3 : block == 16 ? 4 : 5;  // shifts, not divisions
     int x = 0;
     for (; x + n <= limit; x += n) {
         auto acc = hn::Zero(d32);
         for (int y = 0; y < rows; y++) acc = hn::Add(acc, hn::PromoteTo(d32, hn::LoadU(d16, src + pitch * y + x)));
         hn::Store(acc, d32, lanes);
-        for (int i = 0; i < n; i++) sums[(x + i) / block] += lanes[i];
+        for (int i = 0; i < n; i++) sums[(x + i) >> log2_block] += lanes[i];
     }
     for (; x < limit; x++)
-        for (int y = 0; y < rows; y++) sums[x / block] += src[pitch * y + x];
+        for (int y = 0; y < rows; y++) sums[x >> log2_block] += src[pitch * y + x];
 }
 
 }  // namespace HWY_NAMESPACE
