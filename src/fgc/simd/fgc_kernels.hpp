@@ -24,7 +24,8 @@ void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shi
 // Twin of deblock_stripe_vertical_edges followed by blend_row_additive, for one row:
 // `grain` is the undeblocked row and is only read (it needs one readable value past
 // `width`, as the reference stripe's padding provides). For u8 the grain must satisfy
-// |g| <= 8191 (8-bit grain is at most 126).
+// |g| <= 8191 (8-bit grain is at most 126); for u16 |g| <= 32385 >> (16 - bit_depth), the
+// bound above.
 void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size);
 void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
                            int bit_depth);

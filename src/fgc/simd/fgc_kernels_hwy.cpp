@@ -120,8 +120,49 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
         dst[x] = uint8_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size), 0, 255));
 }
 
+// Up to 12 bits everything fits int16 lanes (twice as many per vector as int32): with
+// |grain| <= 32385 >> (16 - bd), the [1 2 1] sum is at most 4 * 2024 and the shifted grain
+// at most 32385; src + grain may pass 32767 only where the clip to 2^bd - 1 applies anyway,
+// so a saturating add gives the same result.
+void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
+                              int bit_depth) {
+    const hn::ScalableTag<int16_t> d16;
+    const hn::Rebind<uint16_t, decltype(d16)> du16;
+    const int n = int(hn::Lanes(d16));
+    const int shift = bit_depth - 8;
+    const int32_t max_value = (1 << bit_depth) - 1;
+    const auto vmax = hn::Set(d16, int16_t(max_value));
+    const auto last = hn::Set(d16, int16_t(block_size - 1));
+    auto blend1 = [&](int x) {
+        dst[x] = uint16_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size) * (1 << shift), 0,
+                                              max_value));
+    };
+    auto blend = [&](int at, auto edge) {
+        const auto a = hn::LoadU(d16, grain + at - 1);
+        const auto b = hn::LoadU(d16, grain + at);
+        const auto c = hn::LoadU(d16, grain + at + 1);
+        const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
+        const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
+        const auto s = hn::BitCast(d16, hn::LoadU(du16, src + at));
+        const auto v = hn::Min(hn::Max(hn::SaturatedAdd(s, g), hn::Zero(d16)), vmax);
+        hn::StoreU(hn::BitCast(du16, v), du16, dst + at);
+    };
+    int x = 1;
+    blend1(0);
+    const auto step = hn::Set(d16, int16_t(n));
+    auto phase = hn::And(hn::Iota(d16, 1), last);
+    if (n % block_size == 0) {
+        const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d16)), hn::Eq(phase, last));
+        for (; x + n <= width - 1; x += n) blend(x, edge);
+    }
+    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), last))
+        blend(x, hn::Or(hn::Eq(phase, hn::Zero(d16)), hn::Eq(phase, last)));
+    for (; x < width; x++) blend1(x);
+}
+
 void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
                         int bit_depth) {
+    if (bit_depth <= 12) return DeblockBlendRowU16Narrow(src, dst, grain, width, block_size, bit_depth);
     const hn::ScalableTag<int32_t> d32;
     const hn::Rebind<int16_t, decltype(d32)> d16;
     const hn::Rebind<uint16_t, decltype(d32)> du16;
