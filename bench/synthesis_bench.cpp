@@ -38,13 +38,20 @@ FrameBuffer picture(int w, int h, int bd) {
     return b;
 }
 
+// The FGC SEI tools/bench-compare inserts into its HEVC stream: luma in three intensity
+// intervals, each chroma component in one (model values scaled to the bit depth).
 FgcParams fgc_params(int bd) {
     FgcParams p;
     p.log2_scale_factor = 5;
+    const int luma[3][5] = {{0, 89, 110, 8, 8}, {90, 169, 90, 10, 6}, {170, 255, 70, 12, 12}};
+    const int chroma[2][3] = {{60, 6, 6}, {50, 7, 5}};
     for (int c = 0; c < 3; c++) {
         p.comp[c].comp_model_present_flag = true;
         p.comp[c].num_model_values_minus1 = 2;
-        p.comp[c].intervals = {{0, 100, {(110 - 20 * c) << (bd - 8), 8, 8}}, {101, 255, {(80 - 10 * c) << (bd - 8), 10, 6}}};
+        if (c == 0)
+            for (const auto& i : luma) p.comp[c].intervals.push_back({i[0], i[1], {i[2] << (bd - 8), i[3], i[4]}});
+        else
+            p.comp[c].intervals = {{0, 255, {chroma[c - 1][0] << (bd - 8), chroma[c - 1][1], chroma[c - 1][2]}}};
     }
     return p;
 }
