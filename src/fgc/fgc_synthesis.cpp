@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include "fgc/blending.hpp"
 #include "fgc/block_randomization.hpp"
@@ -40,7 +41,7 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     for (const auto& st : states_) n += st.capacity() * sizeof(uint32_t);
     for (const auto& s : scratch_)
         n += s.stripe.capacity() * sizeof(int32_t) + s.sums.capacity() * sizeof(uint32_t) +
-             s.blocks.capacity() * sizeof(const int16_t*) + s.origins.capacity() * sizeof(int32_t) +
+             s.blocks.capacity() * sizeof(const int16_t*) + s.narrow_blocks.capacity() * sizeof(const int8_t*) + s.origins.capacity() * sizeof(int32_t) +
              s.row.capacity() * sizeof(int16_t) +
              s.scaled.capacity() * sizeof(int16_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
     return n;
@@ -126,10 +127,10 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
 // a whole stripe is never written out. Blocks that touch the picture's right or bottom
 // edge take their averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
-alignas(64) constexpr int16_t kZeroGrain[kTemplateSize * 32] = {};
-constexpr const int16_t* kNoGrain = kZeroGrain;
+template <typename Table>
+alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};
 
-template <typename Pixel, int kBlock>
+template <typename Pixel, int kBlock, typename Table>
 void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,
                                          const PlaneView& dst, int bit_depth, int by, Scratch& scratch) const {
     constexpr int kRandBlock = kBlock == 32 ? 32 : 16;
@@ -153,14 +154,19 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
         const BlockOffset off = block_offset_from_state(states[b], kBlock);
         origins[b] = off.y * kTemplateSize + off.x + int32_t(states[b] & 1u) * kTemplateSize * kTemplateSize;
     }
-    const int16_t* table0 = tables ? scaled_[c].table(0, 0) : nullptr;
+    const Table* const kNoGrain = kZeroGrain<Table>;
+    const Table* table0 = tables ? scaled_[c].template table<Table>(0, 0) : nullptr;
     constexpr std::ptrdiff_t kIntervalPitch = 2 * kTemplateSize * kTemplateSize;
-    const int16_t** blocks = scratch.blocks.data();
+    const Table** blocks;
+    if constexpr (sizeof(Table) == 1)
+        blocks = scratch.narrow_blocks.data();
+    else
+        blocks = scratch.blocks.data();
     int copies = 0;
     for (int yi = 0; yi < kSub; yi++) {
         const int y0 = y_top + yi * kBlock;
         const int rows_inside = std::min(kBlock, h - y0);
-        const int16_t** block_row = blocks + yi * columns;
+        const Table** block_row = blocks + yi * columns;
         if (rows_inside <= 0) {  // below the picture: these rows are never blended
             std::fill(block_row, block_row + columns, kNoGrain);
             continue;
@@ -213,7 +219,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
             }
             if (tables) {
                 block_row[j] = table0 + iv * kIntervalPitch + origins[j / kSub] + row_offset + (j % kSub) * kBlock;
-            } else {
+            } else if constexpr (sizeof(Table) == 2) {  // narrow tables exist only with tables
                 const BlockOffset off = block_offset_from_state(states[j / kSub], kBlock);
                 const int offset = (off.y + yi * kBlock) * kTemplateSize + off.x + (j % kSub) * kBlock;
                 const ResolvedInterval& ri = comp.intervals[std::size_t(iv)];
@@ -234,9 +240,12 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     int16_t* g = scratch.row.data();
     const int rows = std::min(kRandBlock, h - y_top);
     for (int l = 0; l < rows; l++) {
-        const int16_t* const* block_row = blocks + (l / kBlock) * columns;
+        const Table* const* block_row = blocks + (l / kBlock) * columns;
         const std::ptrdiff_t r = std::ptrdiff_t(l % kBlock) * pitch;
-        for (int j = 0; j < columns; j++) std::memcpy(g + j * kBlock, block_row[j] + r, sizeof(int16_t) * kBlock);
+        if constexpr (sizeof(Table) == 1)
+            simd::gather_block_rows_i8(block_row, r, columns, kBlock, g);
+        else
+            for (int j = 0; j < columns; j++) std::memcpy(g + j * kBlock, block_row[j] + r, sizeof(int16_t) * kBlock);
         std::fill(g + zero_from, g + grain_width + 2, int16_t(0));
         const int y = y_top + l;
         if constexpr (sizeof(Pixel) == 1)
@@ -244,6 +253,25 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
         else
             simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
     }
+}
+
+template <typename Pixel>
+void FgcFrameSynthesis::optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src,
+                                            const PlaneView& dst, int bit_depth, int by, Scratch& scratch) const {
+    const bool narrow = have_scaled_[c] && scaled_[c].narrow();
+    auto run = [&](auto block) {
+        constexpr int kBlock = decltype(block)::value;
+        if (narrow)
+            optimized_stripe<Pixel, kBlock, int8_t>(params, c, src, dst, bit_depth, by, scratch);
+        else
+            optimized_stripe<Pixel, kBlock, int16_t>(params, c, src, dst, bit_depth, by, scratch);
+    };
+    if (block_size_ == 8)
+        run(std::integral_constant<int, 8>{});
+    else if (block_size_ == 16)
+        run(std::integral_constant<int, 16>{});
+    else
+        run(std::integral_constant<int, 32>{});
 }
 
 void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, const FrameView& dst,
@@ -287,6 +315,7 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
         } else {
             grow(s.sums, std::size_t(blocks_x) * 4);
             grow(s.blocks, std::size_t(blocks_x) * 4);
+            grow(s.narrow_blocks, std::size_t(blocks_x) * 4);
             grow(s.origins, std::size_t(blocks_x));
             grow(s.row, std::size_t(blocks_x * rb + 2));
             if (!all_tables) {
@@ -307,13 +336,9 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
             else
                 reference_stripe<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
         } else if (bps == 1) {
-            if (block_size_ == 8) optimized_stripe<uint8_t, 8>(params, c, s, d, src.bit_depth, by, scratch);
-            else if (block_size_ == 16) optimized_stripe<uint8_t, 16>(params, c, s, d, src.bit_depth, by, scratch);
-            else optimized_stripe<uint8_t, 32>(params, c, s, d, src.bit_depth, by, scratch);
+            optimized_stripe_of<uint8_t>(params, c, s, d, src.bit_depth, by, scratch);
         } else {
-            if (block_size_ == 8) optimized_stripe<uint16_t, 8>(params, c, s, d, src.bit_depth, by, scratch);
-            else if (block_size_ == 16) optimized_stripe<uint16_t, 16>(params, c, s, d, src.bit_depth, by, scratch);
-            else optimized_stripe<uint16_t, 32>(params, c, s, d, src.bit_depth, by, scratch);
+            optimized_stripe_of<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
         }
     });
 }

@@ -59,6 +59,7 @@ private:
         std::vector<int32_t> stripe;          // reference path
         std::vector<uint32_t> sums;           // block sums of the stripe's block rows
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
+        std::vector<const int8_t*> narrow_blocks;  // ... when the tables are int8
         std::vector<int32_t> origins;         // ... each randomization block's place in the tables
         std::vector<int16_t> row;             // optimized path: one grain row of the stripe
         std::vector<int16_t> scaled;          // components without scaled tables: blocks scaled here
@@ -67,7 +68,11 @@ private:
     template <typename Pixel>
     void reference_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
                           int by, Scratch& scratch) const;
-    template <typename Pixel, int kBlock>
+    template <typename Pixel>
+    void optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst,
+                             int bit_depth, int by, Scratch& scratch) const;
+    // Table: the element type of the component's scaled templates (int8_t when narrow)
+    template <typename Pixel, int kBlock, typename Table>
     void optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
                           int by, Scratch& scratch) const;
 

@@ -1,5 +1,7 @@
 #include "fgc/scaled_templates.hpp"
 
+#include <algorithm>
+
 #include "fgc/simd/fgc_kernels.hpp"
 
 namespace filmgrain::fgc {
@@ -10,6 +12,7 @@ bool ScaledTemplates::update(const ResolvedComponent& comp, const TemplateCache&
         valid_ = false;
         keys_.clear();
         data_ = {};
+        narrow_data_ = {};
         return false;
     }
     bool same = valid_ && shift == shift_ && keys_.size() == n;
@@ -19,6 +22,7 @@ bool ScaledTemplates::update(const ResolvedComponent& comp, const TemplateCache&
     }
     if (same) return true;
     keys_.clear();
+    narrow_data_.clear();
     data_.resize(n * 2 * kTemplateSize * kTemplateSize);
     std::vector<simd::BlockCopy> copies;
     copies.reserve(n * 2);
@@ -28,10 +32,14 @@ bool ScaledTemplates::update(const ResolvedComponent& comp, const TemplateCache&
         const GrainTemplate& t = cache.get(ri.cutoff_h, ri.cutoff_v);
         // LFSR bit 0 set means a negative block (block_offset_from_state)
         for (uint32_t negative = 0; negative < 2; negative++)
-            copies.push_back({t[0].data(), const_cast<int16_t*>(table(int(i), negative)),
+            copies.push_back({t[0].data(), data_.data() + (i * 2 + negative) * kTemplateSize * kTemplateSize,
                               negative ? -ri.scale : ri.scale, kTemplateSize});
     }
     simd::scale_template_blocks(copies.data(), int(copies.size()), kTemplateSize, shift, kTemplateSize);
+    if (std::all_of(data_.begin(), data_.end(), [](int16_t v) { return v >= -128 && v <= 127; })) {
+        narrow_data_.assign(data_.begin(), data_.end());
+        data_ = {};
+    }
     shift_ = shift;
     valid_ = true;
     return true;

@@ -26,12 +26,23 @@ public:
     // kMaxIntervals intervals. Not thread-safe: call before the stripes run.
     bool update(const ResolvedComponent& comp, const TemplateCache& cache, int shift);
 
+    // Whether every value fits int8 (always so for 8-bit video, where |grain| <= 126): the
+    // tables are then held as int8, half the size, so that the tables of a component's
+    // intervals stay in the first-level cache while its stripes copy block rows out of them.
+    bool narrow() const { return !narrow_data_.empty(); }
+
     // Row 0 of interval `interval`'s table for the sign of LFSR state bit 0 (`negative`);
-    // rows are 64 values apart, as in the raw template.
-    const int16_t* table(int interval, uint32_t negative) const {
-        return data_.data() + (std::size_t(interval) * 2 + negative) * kTemplateSize * kTemplateSize;
+    // rows are 64 values apart, as in the raw template. table<int8_t> when narrow(), else
+    // table<int16_t>.
+    template <typename T>
+    const T* table(int interval, uint32_t negative) const {
+        const std::size_t at = (std::size_t(interval) * 2 + negative) * kTemplateSize * kTemplateSize;
+        if constexpr (sizeof(T) == 1)
+            return narrow_data_.data() + at;
+        else
+            return data_.data() + at;
     }
-    std::size_t bytes() const { return data_.capacity() * sizeof(int16_t); }
+    std::size_t bytes() const { return data_.capacity() * sizeof(int16_t) + narrow_data_.capacity(); }
 
 private:
     struct Key {
@@ -41,7 +52,8 @@ private:
     std::vector<Key> keys_;
     int shift_ = -1;
     bool valid_ = false;
-    std::vector<int16_t> data_;
+    std::vector<int16_t> data_;        // empty when narrow
+    std::vector<int8_t> narrow_data_;  // empty when not narrow
 };
 
 }  // namespace filmgrain::fgc

@@ -199,6 +199,37 @@ void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain
     for (; x < width; x++) blend1(x);
 }
 
+template <int kBlock>
+HWY_INLINE void GatherBlockRowsI8Fixed(const int8_t* const* rows, std::ptrdiff_t offset, int count, int16_t* out) {
+    const hn::CappedTag<int16_t, 8> d16;
+    const hn::Rebind<int8_t, decltype(d16)> d8;
+    int j = 0;
+    // two blocks per step: independent loads from two places in the tables
+    for (; j + 2 <= count; j += 2, out += 2 * kBlock) {
+        const int8_t* a = rows[j] + offset;
+        const int8_t* b = rows[j + 1] + offset;
+        for (int k = 0; k < kBlock; k += 8) {
+            const auto va = hn::PromoteTo(d16, hn::LoadU(d8, a + k));
+            const auto vb = hn::PromoteTo(d16, hn::LoadU(d8, b + k));
+            hn::StoreU(va, d16, out + k);
+            hn::StoreU(vb, d16, out + kBlock + k);
+        }
+    }
+    if (j < count)
+        for (int k = 0; k < kBlock; k += 8) hn::StoreU(hn::PromoteTo(d16, hn::LoadU(d8, rows[j] + offset + k)), d16, out + k);
+}
+
+void GatherBlockRowsI8(const int8_t* const* rows, std::ptrdiff_t offset, int count, int block, int16_t* out) {
+    const hn::CappedTag<int16_t, 8> d16;
+    if (hn::Lanes(d16) == 8) {  // every target but SCALAR
+        if (block == 8) return GatherBlockRowsI8Fixed<8>(rows, offset, count, out);
+        if (block == 16) return GatherBlockRowsI8Fixed<16>(rows, offset, count, out);
+        if (block == 32) return GatherBlockRowsI8Fixed<32>(rows, offset, count, out);
+    }
+    for (int j = 0; j < count; j++, out += block)
+        for (int k = 0; k < block; k++) out[k] = rows[j][offset + k];
+}
+
 void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     const hn::ScalableTag<uint8_t> d8;
     const hn::Repartition<uint64_t, decltype(d8)> d64;
@@ -256,6 +287,11 @@ HWY_EXPORT(ScaleTemplateBlocks);
 HWY_EXPORT(DeblockBlendRowU8);
 HWY_EXPORT(DeblockBlendRowU16);
 HWY_EXPORT(BlockSumsU8);
+HWY_EXPORT(GatherBlockRowsI8);
+
+void gather_block_rows_i8(const int8_t* const* rows, std::ptrdiff_t offset, int count, int block, int16_t* out) {
+    HWY_DYNAMIC_DISPATCH(GatherBlockRowsI8)(rows, offset, count, block, out);
+}
 HWY_EXPORT(BlockSumsU16);
 
 void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
