@@ -150,9 +150,32 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int 
         dst[x] = static_cast<uint8_t>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
 }
+// Above 8 bits the product needs int32 lanes, but the look-up is still done as for 8 bits:
+// scalar loads into a buffer measured faster than GatherIndex on the CPUs tried.
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
                      int scaling_shift, int min_value, int max_value) {
-    BlendLumaRow<uint16_t>(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+    const hn::ScalableTag<int32_t> d32;
+    const hn::Rebind<uint16_t, decltype(d32)> dp;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
+    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
+    constexpr int kChunk = 256;
+    HWY_ALIGN int32_t scale[kChunk];
+    int x = 0;
+    while (x + n <= width) {
+        const int chunk = std::min(kChunk, (width - x) / n * n);
+        for (int k = 0; k < chunk; ++k) scale[k] = scaling[src[x + k]];
+        for (int k = 0; k < chunk; k += n) {
+            const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
+            const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x + k));
+            hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, hn::Load(d32, scale + k), nz, scaling_shift, round,
+                                                       vmin, vmax)),
+                       dp, dst + x + k);
+        }
+        x += chunk;
+    }
+    BlendLumaRow<uint16_t>(src + x, dst + x, noise + x, width - x, scaling, scaling_shift, min_value, max_value);
 }
 // 8 bits, as BlendLumaRowU8: the index (`merged`) is formed in 32-bit lanes and stored as
 // bytes, looked up with scalar loads, and the noise is scaled in 16-bit lanes.
@@ -206,11 +229,53 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
                             noise + x, width - x, subsampling_x, index, scaling, scaling_shift, bit_depth, min_value,
                             max_value);
 }
+// Above 8 bits, as BlendLumaRowU16: the index (`merged`) is formed in vector lanes and
+// stored, looked up with scalar loads, and the noise scaled in int32 lanes.
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                        const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                        const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
-    BlendChromaRow<uint16_t>(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
-                             bit_depth, min_value, max_value);
+    const hn::ScalableTag<int32_t> d32;
+    const hn::Rebind<uint16_t, decltype(d32)> dp;
+    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const int n = int(hn::Lanes(d32));
+    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
+    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
+    const auto luma_mult = hn::Set(d32, index.luma_mult), mult = hn::Set(d32, index.mult);
+    const auto offset = hn::Set(d32, index.offset * (1 << (bit_depth - 8)));
+    const auto vpixel_max = hn::Set(d32, (1 << bit_depth) - 1);
+    constexpr int kChunk = 256;
+    HWY_ALIGN int32_t merged[kChunk];
+    HWY_ALIGN int32_t scale[kChunk];
+    // The last chroma column of an odd-width subsampled picture is left to the scalar tail.
+    const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
+    int x = 0;
+    while (x + n <= vec_width) {
+        const int chunk = std::min(kChunk, (vec_width - x) / n * n);
+        for (int k = 0; k < chunk; k += n) {
+            const auto avg_luma = CositedLuma(d32, luma, x + k, subsampling_x);
+            hn::Vec<decltype(d32)> m;
+            if (index.from_luma) {
+                m = avg_luma;
+            } else {
+                const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
+                const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
+                m = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), vpixel_max);
+            }
+            hn::Store(m, d32, merged + k);
+        }
+        for (int k = 0; k < chunk; ++k) scale[k] = scaling[merged[k]];
+        for (int k = 0; k < chunk; k += n) {
+            const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
+            const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x + k));
+            hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, hn::Load(d32, scale + k), nz, scaling_shift, round,
+                                                       vmin, vmax)),
+                       dp, dst + x + k);
+        }
+        x += chunk;
+    }
+    BlendChromaRow<uint16_t>(src + x, dst + x, luma + (x << subsampling_x), luma_width - (x << subsampling_x),
+                             noise + x, width - x, subsampling_x, index, scaling, scaling_shift, bit_depth, min_value,
+                             max_value);
 }
 
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
