@@ -158,6 +158,8 @@ void register_tradeoff(CLI::App& app) {
     sub->add_option("--radius", o->radius, "target grain radius (input pixels)")->capture_default_str();
     sub->add_flag("--skip-benchmark", o->skip_benchmark, "skip the 1024x1024 N=800 Boolean benchmark");
     sub->callback([o]() {
+        // Taken before any work of this run, so it shows what else the machine was doing.
+        const std::string load_before = load_average();
         RawVideoOptions size_opt;
         size_opt.size = o->size;
         const VideoInfo vi = size_opt.to_info();
@@ -262,9 +264,12 @@ void register_tradeoff(CLI::App& app) {
               << physical::algorithm_name(rep.algorithm) << ": **" << fmt("%.1f", wall) << " s wall**, "
               << fmt("%.1f", cpu) << " s CPU (" << fmt("%.1f", cpu) << " core-seconds, against 26 s x 40 cores = 1040 "
               << "core-seconds for the published CPU pixel-wise code: " << fmt("%.0f", 1040 / cpu) << "x less CPU per output). "
-              << "The machine's load average was " << load_average() << " on 2 cores when the run ended, so the wall "
-              << "time is that of a shared machine; on 2 idle cores it would be about CPU / threads = "
-              << fmt("%.1f", cpu / o->threads) << " s (an estimate from the CPU time, not a measurement).";
+              << "1-minute load average on the 2 cores: " << load_before << " before this tradeoff run started, "
+              << load_average() << " when the benchmark ended (this run's own threads included); CPU / threads = "
+              << fmt("%.1f", cpu / o->threads) << " s, so the wall time above is "
+              << (wall < 1.15 * cpu / o->threads ? "that of cores the run had to itself"
+                                                  : "longer than the CPU time explains: the cores were shared")
+              << ".";
             bench = s.str();
             std::fprintf(stderr, "tradeoff: benchmark %s\n", bench.c_str());
         }
@@ -284,8 +289,9 @@ void register_tradeoff(CLI::App& app) {
            << "is " << fmt("%.2f", std::sqrt(target(0, 0)) * 255) << " code values).\n"
            << "- **lag-1 correlation**: C(1,0)/C(0,0), measured; the target is " << fmt("%.3f", target(1, 0) / target(0, 0))
            << ".\n- **throughput**: output Mpixel/s of the luma plane (FGC and AV1 also process 4:2:0 chroma without grain), "
-           << "wall clock on this machine (2 cores shared with other jobs; load average " << load_average()
-           << " when the table was written) with the thread count shown.\n\n"
+           << "wall clock on this machine (2 cores; 1-minute load average " << load_before
+           << " before this run started, " << load_average() << " when the table was written, this run included) "
+           << "with the thread count shown.\n\n"
            << "| method | settings | threads | measured on | throughput (Mpixel/s) | error | variance ratio | lag-1 correlation |\n"
            << "|---|---|---|---|---|---|---|---|\n";
         std::vector<PlotPoint> pts;
