@@ -53,6 +53,12 @@ int FgcSynthesizer::templates_built() const {
 
 std::size_t FgcSynthesizer::scratch_bytes() const { return synthesis_ ? synthesis_->scratch_bytes() : 0; }
 
+std::size_t FgcSynthesizer::working_bytes() const {
+    if (!synthesis_) return 0;
+    return synthesis_->scratch_bytes() + synthesis_->scaled_template_bytes() +
+           std::size_t(synthesis_->templates().built_count()) * sizeof(fgc::GrainTemplate);
+}
+
 namespace {
 // A repeated SEI (encoders commonly send the same one with every picture) keeps the
 // active state, so its validation and resolution are not redone and nothing is allocated.

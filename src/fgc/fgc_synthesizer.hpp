@@ -65,6 +65,9 @@ public:
     int templates_built() const;
     // Working memory besides the templates (stripe buffers, block states), in bytes.
     std::size_t scratch_bytes() const;
+    // Everything the context keeps between pictures: the 64x64 templates built, their
+    // scaled per-interval tables and the scratch above (docs/performance-notes.md).
+    std::size_t working_bytes() const;
 
 private:
     struct Active;
