@@ -64,6 +64,34 @@ HWY_INLINE hn::Vec<D32> CositedLuma(D32 d32, const Pixel* luma, int x, int subsa
         return hn::PromoteTo(d32, avg);
 }
 
+// The chroma scaling index of AV1 7.18.3.5 in int32 lanes: the co-sited luma when chroma
+// scales from luma, else (luma * cb_luma_mult + chroma * cb_mult) >> 6 plus the offset,
+// clipped to the sample range. `orig` is only read in the second case.
+template <class D32, class V>
+HWY_INLINE V ChromaScalingIndexLanes(D32 d32, V avg_luma, V orig, bool from_luma, V luma_mult, V mult, V offset,
+                                     V pixel_max) {
+    if (from_luma) return avg_luma;
+    const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
+    return hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), pixel_max);
+}
+
+// Above 8 bits: `count` samples (a multiple of the lane count) whose scaling values were
+// looked up into `scale`, scaled noise added in int32 lanes.
+template <class D32>
+HWY_INLINE void AddLookedUpNoiseU16(D32 d32, const uint16_t* src, uint16_t* dst, const int16_t* noise,
+                                    const int32_t* scale, int count, int scaling_shift, hn::Vec<D32> round,
+                                    hn::Vec<D32> vmin, hn::Vec<D32> vmax) {
+    const hn::Rebind<uint16_t, D32> dp;
+    const hn::Rebind<int16_t, D32> d16;
+    for (int k = 0; k < count; k += int(hn::Lanes(d32))) {
+        const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + k));
+        const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + k));
+        hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, hn::Load(d32, scale + k), nz, scaling_shift, round,
+                                                   vmin, vmax)),
+                   dp, dst + k);
+    }
+}
+
 template <typename Pixel>
 void BlendChromaRow(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise, int width,
                     int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling, int scaling_shift,
@@ -85,13 +113,8 @@ void BlendChromaRow(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_wi
     for (; x + n <= vec_width; x += n) {
         const auto avg_luma = CositedLuma(d32, luma, x, subsampling_x);
         const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x));
-        hn::Vec<decltype(d32)> merged;
-        if (index.from_luma) {
-            merged = avg_luma;
-        } else {
-            const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
-            merged = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), vpixel_max);
-        }
+        const auto merged =
+            ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vpixel_max);
         const auto scale = hn::GatherIndex(d32, scaling, merged);
         const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x));
         hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, scale, nz, scaling_shift, round, vmin, vmax)), dp,
@@ -155,8 +178,6 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int 
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
                      int scaling_shift, int min_value, int max_value) {
     const hn::ScalableTag<int32_t> d32;
-    const hn::Rebind<uint16_t, decltype(d32)> dp;
-    const hn::Rebind<int16_t, decltype(d32)> d16;
     const int n = int(hn::Lanes(d32));
     const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
     const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
@@ -166,13 +187,7 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const int16_t* noise, i
     while (x + n <= width) {
         const int chunk = std::min(kChunk, (width - x) / n * n);
         for (int k = 0; k < chunk; ++k) scale[k] = scaling[src[x + k]];
-        for (int k = 0; k < chunk; k += n) {
-            const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
-            const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x + k));
-            hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, hn::Load(d32, scale + k), nz, scaling_shift, round,
-                                                       vmin, vmax)),
-                       dp, dst + x + k);
-        }
+        AddLookedUpNoiseU16(d32, src + x, dst + x, noise + x, scale, chunk, scaling_shift, round, vmin, vmax);
         x += chunk;
     }
     BlendLumaRow<uint16_t>(src + x, dst + x, noise + x, width - x, scaling, scaling_shift, min_value, max_value);
@@ -204,14 +219,9 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
             const int chunk = std::min(kChunk, (vec_width - x) / n * n);
             for (int k = 0; k < chunk; k += n32) {
                 const auto avg_luma = CositedLuma(d32, luma, x + k, subsampling_x);
-                hn::Vec<decltype(d32)> m;
-                if (index.from_luma) {
-                    m = avg_luma;
-                } else {
-                    const auto orig = hn::PromoteTo(d32, hn::LoadU(d8q, src + x + k));
-                    const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
-                    m = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), vmax8);
-                }
+                const auto orig = index.from_luma ? avg_luma : hn::PromoteTo(d32, hn::LoadU(d8q, src + x + k));
+                const auto m =
+                    ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vmax8);
                 hn::Store(hn::DemoteTo(d8q, m), d8q, merged + k);
             }
             for (int k = 0; k < chunk; ++k) scale[k] = static_cast<int16_t>(scaling[merged[k]]);
@@ -236,7 +246,6 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
                        const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     const hn::ScalableTag<int32_t> d32;
     const hn::Rebind<uint16_t, decltype(d32)> dp;
-    const hn::Rebind<int16_t, decltype(d32)> d16;
     const int n = int(hn::Lanes(d32));
     const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
     const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
@@ -253,24 +262,12 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         const int chunk = std::min(kChunk, (vec_width - x) / n * n);
         for (int k = 0; k < chunk; k += n) {
             const auto avg_luma = CositedLuma(d32, luma, x + k, subsampling_x);
-            hn::Vec<decltype(d32)> m;
-            if (index.from_luma) {
-                m = avg_luma;
-            } else {
-                const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
-                const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
-                m = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), vpixel_max);
-            }
-            hn::Store(m, d32, merged + k);
+            const auto orig = index.from_luma ? avg_luma : hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
+            hn::Store(ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vpixel_max),
+                      d32, merged + k);
         }
         for (int k = 0; k < chunk; ++k) scale[k] = scaling[merged[k]];
-        for (int k = 0; k < chunk; k += n) {
-            const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
-            const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x + k));
-            hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, hn::Load(d32, scale + k), nz, scaling_shift, round,
-                                                       vmin, vmax)),
-                       dp, dst + x + k);
-        }
+        AddLookedUpNoiseU16(d32, src + x, dst + x, noise + x, scale, chunk, scaling_shift, round, vmin, vmax);
         x += chunk;
     }
     BlendChromaRow<uint16_t>(src + x, dst + x, luma + (x << subsampling_x), luma_width - (x << subsampling_x),
