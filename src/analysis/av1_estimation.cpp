@@ -14,7 +14,6 @@ namespace {
 
 constexpr int kCalibrationSize = 256;
 constexpr int kCalibrationSeeds = 6;  // templates are random: average over realizations
-constexpr std::size_t kMinObservations = 16;
 constexpr double kMinArEquations = 500;
 
 std::vector<int> lag_indices(int lag, bool with_luma) {
@@ -214,22 +213,12 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
 Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1Target& target) {
     Av1Estimate e;
     const int num_planes = target.chroma == ChromaFormat::k400 ? 1 : 3;
-    const double min_level = kMinGrainLevel8 * double(1 << (target.bit_depth - 8));
     const int max_points[3] = {14, 10, 10};
     std::array<std::vector<LevelPoint>, 3> points;
     for (int c = 0; c < num_planes; c++) {
         auto& rep = e.components[c];
-        rep.curve = fit_level_curve(obs[c].blocks);
-        if (!rep.curve.valid() || rep.curve.observations < kMinObservations) {
-            rep.note = "too few flat blocks (" + std::to_string(rep.curve.observations) + ") to estimate grain";
-            continue;
-        }
-        double peak = 0;
-        for (int i = rep.curve.observed_low; i <= rep.curve.observed_high; i++) peak = std::max(peak, rep.curve.level[i]);
-        if (peak < min_level) {
-            rep.note = "no grain: the largest level is below " + std::to_string(kMinGrainLevel8) + " (8-bit units)";
-            continue;
-        }
+        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve);
+        if (!rep.note.empty()) continue;
         rep.points = fit_piecewise_linear(rep.curve, max_points[c], target.accuracy);
         rep.error = relative_error(rep.curve, evaluate_piecewise_linear(rep.points));
         rep.present = true;

@@ -14,7 +14,6 @@ namespace {
 
 constexpr int kCalibrationSize = 256;
 constexpr int kMinDctBlocksPerInterval = 8;
-constexpr std::size_t kMinObservations = 16;
 
 void fill_mid_grey(FrameBuffer& fb) {
     FrameView v = fb.view();
@@ -166,17 +165,8 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
     std::array<FgcComponentLevels, 3> levels;
     for (int c = 0; c < num_comp; c++) {
         auto& rep = e.components[c];
-        rep.curve = fit_level_curve(obs[c].blocks);
-        if (!rep.curve.valid() || rep.curve.observations < kMinObservations) {
-            rep.note = "too few flat blocks (" + std::to_string(rep.curve.observations) + ") to estimate grain";
-            continue;
-        }
-        double peak = 0;
-        for (int i = rep.curve.observed_low; i <= rep.curve.observed_high; i++) peak = std::max(peak, rep.curve.level[i]);
-        if (peak < min_level) {
-            rep.note = "no grain: the largest level is below " + std::to_string(kMinGrainLevel8) + " (8-bit units)";
-            continue;
-        }
+        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve);
+        if (!rep.note.empty()) continue;
         // The smallest number of intervals that meets the accuracy target.
         for (int k = 1; k <= target.max_intervals; k++) {
             auto iv = segment_levels(rep.curve, k);

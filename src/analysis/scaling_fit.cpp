@@ -6,12 +6,15 @@
 
 #include <opencv2/core.hpp>
 
+#include "analysis/grain_level.hpp"
+
 namespace filmgrain::analysis {
 namespace {
 
 constexpr int kOutlierPasses = 2;
 constexpr int kMinPerSubRange = 4;  // fewer observations: the polynomial speaks instead
 constexpr int kPolynomialOrder = 4;
+constexpr std::size_t kMinObservations = 16;  // flat blocks below which a component is not estimated
 
 double median_of(std::vector<float> v) {
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -289,6 +292,17 @@ std::vector<LevelPoint> fit_piecewise_linear(const LevelCurve& curve, int max_po
         best = std::move(best_pts);
     }
     return best;
+}
+
+std::string fit_component_curve(const std::vector<BlockSample>& blocks, int bit_depth, LevelCurve& curve) {
+    curve = fit_level_curve(blocks);
+    if (!curve.valid() || curve.observations < kMinObservations)
+        return "too few flat blocks (" + std::to_string(curve.observations) + ") to estimate grain";
+    double peak = 0;
+    for (int i = curve.observed_low; i <= curve.observed_high; i++) peak = std::max(peak, curve.level[i]);
+    if (peak < kMinGrainLevel8 * double(1 << (bit_depth - 8)))
+        return "no grain: the largest level is below " + std::to_string(kMinGrainLevel8) + " (8-bit units)";
+    return {};
 }
 
 }  // namespace filmgrain::analysis

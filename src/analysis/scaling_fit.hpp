@@ -4,6 +4,7 @@
 // range (TR 23002-9 clause 8; HM's analyser fits, then quantizes).
 #pragma once
 #include <array>
+#include <string>
 #include <vector>
 
 #include "analysis/block_observations.hpp"
@@ -26,6 +27,11 @@ struct LevelCurve {
 };
 
 LevelCurve fit_level_curve(const std::vector<BlockSample>& blocks);
+
+// The level curve of one component for either model, and why it carries no grain: too few
+// flat blocks to trust the fit, or no level above kMinGrainLevel8 (8-bit units, scaled to
+// `bit_depth`). Returns the reason, empty when the component has grain.
+std::string fit_component_curve(const std::vector<BlockSample>& blocks, int bit_depth, LevelCurve& curve);
 
 // Contiguous intensity intervals, each with one level: the segmentation with the least
 // weighted squared error (the Lloyd-Max criterion restricted to intervals; solved exactly by
