@@ -3,16 +3,11 @@
 #include <algorithm>
 
 #include "filmgrain/error.hpp"
+#include "bitstream/poc_syntax.hpp"
 #include "metadata/bit_reader.hpp"
 
 namespace filmgrain::bitstream {
 namespace {
-
-uint32_t ue_in_range(BitReader& r, const char* field, uint32_t hi) {
-    const uint32_t v = r.ue(field);
-    if (v > hi) throw Error(ErrorCode::kMalformedPayload, out_of_range_message(field, v, 0, hi));
-    return v;
-}
 
 bool has_chroma_format_syntax(int profile_idc) {
     switch (profile_idc) {
@@ -146,11 +141,7 @@ H264PictureOrder H264PocDecoder::picture(const std::vector<uint8_t>& rbsp) {
     if (sps.poc_type == 0) {
         const int max_lsb = 1 << sps.log2_max_poc_lsb;
         const int prev_msb = o.idr ? 0 : prev_poc_msb_, prev_lsb = o.idr ? 0 : prev_poc_lsb_;
-        int msb = prev_msb;
-        if (f.poc_lsb < prev_lsb && prev_lsb - f.poc_lsb >= max_lsb / 2)
-            msb = prev_msb + max_lsb;
-        else if (f.poc_lsb > prev_lsb && f.poc_lsb - prev_lsb > max_lsb / 2)
-            msb = prev_msb - max_lsb;
+        const int msb = poc_msb(prev_msb, prev_lsb, f.poc_lsb, max_lsb);
         top = msb + f.poc_lsb;
         bottom = top + f.delta_bottom;
         if (o.nal_ref_idc != 0) {

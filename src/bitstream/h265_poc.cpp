@@ -1,16 +1,11 @@
 #include "bitstream/h265_poc.hpp"
 
 #include "filmgrain/error.hpp"
+#include "bitstream/poc_syntax.hpp"
 #include "metadata/bit_reader.hpp"
 
 namespace filmgrain::bitstream {
 namespace {
-
-uint32_t ue_in_range(BitReader& r, const char* field, uint32_t hi) {
-    const uint32_t v = r.ue(field);
-    if (v > hi) throw Error(ErrorCode::kMalformedPayload, out_of_range_message(field, v, 0, hi));
-    return v;
-}
 
 // profile_tier_level(1, sps_max_sub_layers_minus1), H.265 7.3.3: skipped, its length
 // depends only on which sub-layer profiles and levels are present.
@@ -129,13 +124,7 @@ H265PictureOrder H265PocDecoder::picture(const std::vector<uint8_t>& rbsp) {
     int msb = 0;
     if (!(o.irap && o.no_rasl_output)) {
         const int prev_lsb = prev_tid0_poc_ & (max_lsb - 1);
-        const int prev_msb = prev_tid0_poc_ - prev_lsb;
-        if (lsb < prev_lsb && prev_lsb - lsb >= max_lsb / 2)
-            msb = prev_msb + max_lsb;
-        else if (lsb > prev_lsb && lsb - prev_lsb > max_lsb / 2)
-            msb = prev_msb - max_lsb;
-        else
-            msb = prev_msb;
+        msb = poc_msb(prev_tid0_poc_ - prev_lsb, prev_lsb, lsb, max_lsb);
     }
     o.poc = msb + lsb;
     if (temporal_id == 0 && !is_rasl(t) && !is_radl(t) && !is_sub_layer_non_reference(t)) prev_tid0_poc_ = o.poc;

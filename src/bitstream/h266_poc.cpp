@@ -3,16 +3,11 @@
 #include <string>
 
 #include "filmgrain/error.hpp"
+#include "bitstream/poc_syntax.hpp"
 #include "metadata/bit_reader.hpp"
 
 namespace filmgrain::bitstream {
 namespace {
-
-uint32_t ue_in_range(BitReader& r, const char* field, uint32_t hi) {
-    const uint32_t v = r.ue(field);
-    if (v > hi) throw Error(ErrorCode::kMalformedPayload, out_of_range_message(field, v, 0, hi));
-    return v;
-}
 
 void skip_bits(BitReader& r, std::size_t n, const char* field) {
     for (; n >= 32; n -= 32) r.u(32, field);
@@ -190,13 +185,7 @@ H266PictureOrder H266PocDecoder::picture(const std::vector<uint8_t>& rbsp) {
         msb = *h.msb_cycle * max_lsb;
     } else if (!o.clvs_start && !counted_from_here) {
         const int prev_lsb = prev_tid0_poc_ & (max_lsb - 1);
-        const int prev_msb = prev_tid0_poc_ - prev_lsb;
-        if (h.lsb < prev_lsb && prev_lsb - h.lsb >= max_lsb / 2)
-            msb = prev_msb + max_lsb;
-        else if (h.lsb > prev_lsb && h.lsb - prev_lsb > max_lsb / 2)
-            msb = prev_msb - max_lsb;
-        else
-            msb = prev_msb;
+        msb = poc_msb(prev_tid0_poc_ - prev_lsb, prev_lsb, h.lsb, max_lsb);
     }
     o.poc = msb + h.lsb;
     if (temporal_id == 0 && !is_rasl(t) && !is_radl(t)) prev_tid0_poc_ = o.poc;
