@@ -179,7 +179,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             const int16_t* nz = scratch.noise.data() + pitch * std::size_t(i);
             if constexpr (sizeof(Pixel) == 1)
                 simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                          width_, nz, pw, subx_, chroma_index_[pl], scaling32_[pl].data(),
+                                          width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl].table8().data(),
                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
             else
                 simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
@@ -199,7 +199,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const int y = luma_y0 + i;
         const int16_t* nz = scratch.noise.data() + pitch * std::size_t(i);
         if constexpr (sizeof(Pixel) == 1)
-            simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling32_[0].data(), scaling_shift,
+            simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(), scaling_shift,
                                     clip_.min_value, clip_.max_luma);
         else
             simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling32_[0].data(),

@@ -221,7 +221,7 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
             av1::blend_luma_row<Pixel>(src.data(), want.data(), noise.data(), width, scaling, shift, clip.min_value,
                                        clip.max_luma);
             if constexpr (sizeof(Pixel) == 1)
-                av1::simd::blend_luma_row_u8(src.data(), got.data(), noise.data(), width, table.data(), shift,
+                av1::simd::blend_luma_row_u8(src.data(), got.data(), noise.data(), width, scaling.table8().data(), shift,
                                              clip.min_value, clip.max_luma);
             else
                 av1::simd::blend_luma_row_u16(src.data(), got.data(), noise.data(), width, table.data(), shift,
@@ -231,7 +231,8 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
                                          index, scaling, shift, bd, clip.min_value, clip.max_chroma);
             if constexpr (sizeof(Pixel) == 1)
                 av1::simd::blend_chroma_row_u8(src.data(), got.data(), luma.data(), luma_width, noise.data(), width,
-                                               subx, index, table.data(), shift, bd, clip.min_value, clip.max_chroma);
+                                               subx, index, scaling.table8().data(), shift, bd, clip.min_value,
+                                               clip.max_chroma);
             else
                 av1::simd::blend_chroma_row_u16(src.data(), got.data(), luma.data(), luma_width, noise.data(), width,
                                                 subx, index, table.data(), shift, bd, clip.min_value,

@@ -2,7 +2,8 @@
 // targets the CPU supports), each bit-equal to the scalar reference named beside it
 // (tests/unit/simd_equivalence_test.cpp checks every target on random input).
 // Scaling functions are passed as int32 tables of 1 << bit_depth entries (the values of
-// ScalingLookup::operator()), which the vector code gathers from.
+// ScalingLookup::operator()) above 8 bits, and as the 256-byte ScalingLookup::table8() at
+// 8 bits.
 #pragma once
 #include <cstdint>
 
@@ -11,14 +12,14 @@
 namespace filmgrain::av1::simd {
 
 // Twin of blend_luma_row.
-void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const uint8_t* scaling,
                        int scaling_shift, int min_value, int max_value);
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
                         int scaling_shift, int min_value, int max_value);
 
 // Twin of blend_chroma_row.
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
-                         int width, int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling,
+                         int width, int subsampling_x, const ChromaScalingIndex& index, const uint8_t* scaling,
                          int scaling_shift, int bit_depth, int min_value, int max_value);
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,

@@ -92,6 +92,34 @@ HWY_INLINE void AddLookedUpNoiseU16(D32 d32, const uint16_t* src, uint16_t* dst,
     }
 }
 
+// The samples the vector loops leave, one by one (AV1 7.18.3.5), from an int32 or a byte
+// scaling table.
+template <typename Pixel, typename Scale>
+void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise, int x,
+                       int width, int subsampling_x, const ChromaScalingIndex& index, const Scale* scaling,
+                       int scaling_shift, int bit_depth, int min_value, int max_value) {
+    const int pixel_max = (1 << bit_depth) - 1;
+    for (; x < width; ++x) {
+        const int lx = x << subsampling_x;
+        int average_luma = luma[lx];
+        if (subsampling_x) {
+            const int rx = lx + 1 < luma_width ? lx + 1 : luma_width - 1;
+            average_luma = (average_luma + luma[rx] + 1) >> 1;
+        }
+        const int orig = src[x];
+        int merged;
+        if (index.from_luma) {
+            merged = average_luma;
+        } else {
+            const int combined = average_luma * index.luma_mult + orig * index.mult;
+            merged = (combined >> 6) + index.offset * (1 << (bit_depth - 8));
+            merged = merged < 0 ? 0 : merged > pixel_max ? pixel_max : merged;
+        }
+        const int v = orig + round2_signed(scaling[merged] * noise[x], scaling_shift);
+        dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
+    }
+}
+
 template <typename Pixel>
 void BlendChromaRow(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise, int width,
                     int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling, int scaling_shift,
@@ -120,34 +148,14 @@ void BlendChromaRow(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_wi
         hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, scale, nz, scaling_shift, round, vmin, vmax)), dp,
                    dst + x);
     }
-    for (; x < width; ++x) {
-        const int lx = x << subsampling_x;
-        int average_luma = luma[lx];
-        if (subsampling_x) {
-            const int rx = lx + 1 < luma_width ? lx + 1 : luma_width - 1;
-            average_luma = (average_luma + luma[rx] + 1) >> 1;
-        }
-        const int orig = src[x];
-        int merged;
-        if (index.from_luma) {
-            merged = average_luma;
-        } else {
-            const int combined = average_luma * index.luma_mult + orig * index.mult;
-            merged = (combined >> 6) + index.offset * (1 << (bit_depth - 8));
-            merged = merged < 0 ? 0 : merged > pixel_max ? pixel_max : merged;
-        }
-        const int v = orig + round2_signed(scaling[merged] * noise[x], scaling_shift);
-        dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
-    }
+    BlendChromaScalar(src, dst, luma, luma_width, noise, x, width, subsampling_x, index, scaling, scaling_shift,
+                      bit_depth, min_value, max_value);
 }
 
-// 8 bits: the scaling function as 256 bytes (AV1 scaling values are 0..255) and the
-// look-up as sixteen 16-entry byte shuffles, one per high nibble of the index, each kept
-// where that nibble matches. Three vector operations per 16 entries replace a scalar load
-// and store per sample, which were the bound of the 8-bit blends.
-HWY_INLINE void NarrowScalingTable(const int32_t* scaling, uint8_t* table) {
-    for (int i = 0; i < 256; ++i) table[i] = static_cast<uint8_t>(scaling[i]);
-}
+// 8 bits: the scaling function is the spec's 256-byte ScalingLut (values 0..255, made once
+// per parameter set) and the look-up sixteen 16-entry byte shuffles, one per high nibble of
+// the index, each kept where that nibble matches. Three vector operations per 16 entries
+// replace a scalar load and store per sample, which were the bound of the 8-bit blends.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const uint8_t* table) {
     const hn::ScalableTag<uint8_t> du8;
     const int n = int(hn::Lanes(du8));
@@ -170,7 +178,7 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
 // 8 bits: scale * noise fits int16 (255 * 128), and Round2(x, s) equals
 // ((x >> (s - 1)) + 1) >> 1, which stays in int16 too. The 256-entry scaling look-up is done
 // with scalar loads into a small buffer: on the CPUs measured that beats vector gathers.
-void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const uint8_t* scaling,
                     int scaling_shift, int min_value, int max_value) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint8_t, decltype(d16)> d8;
@@ -179,13 +187,11 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int 
     const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
     const auto one = hn::Set(d16, int16_t(1));
     constexpr int kChunk = 256;
-    HWY_ALIGN uint8_t table[256];
-    NarrowScalingTable(scaling, table);
     HWY_ALIGN uint8_t scale[kChunk];
     int x = 0;
     while (x + n <= width) {
         const int chunk = std::min(kChunk, (width - x) / n * n);
-        LookUpScaling8(src + x, scale, chunk, table);
+        LookUpScaling8(src + x, scale, chunk, scaling);
         for (int k = 0; k < chunk; k += n) {
             const auto s16 = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, scale + k)));
             const auto prod = hn::Mul(s16, hn::LoadU(d16, noise + x + k));
@@ -224,7 +230,7 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const int16_t* noise, i
 // 8 bits, as BlendLumaRowU8: the index (`merged`) is formed in 32-bit lanes and stored as
 // bytes, looked up with scalar loads, and the noise is scaled in 16-bit lanes.
 void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
-                      int width, int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling,
+                      int width, int subsampling_x, const ChromaScalingIndex& index, const uint8_t* scaling,
                       int scaling_shift, int bit_depth, int min_value, int max_value) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint8_t, decltype(d16)> d8;
@@ -240,8 +246,6 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
     constexpr int kChunk = 256;
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
-    HWY_ALIGN uint8_t table[256];
-    NarrowScalingTable(scaling, table);
     // The last chroma column of an odd-width subsampled picture is left to the scalar tail.
     const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
     int x = 0;
@@ -255,7 +259,7 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
                     ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vmax8);
                 hn::Store(hn::DemoteTo(d8q, m), d8q, merged + k);
             }
-            LookUpScaling8(merged, scale, chunk, table);
+            LookUpScaling8(merged, scale, chunk, scaling);
             for (int k = 0; k < chunk; k += n) {
                 const auto s16 = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, scale + k)));
                 const auto prod = hn::Mul(s16, hn::LoadU(d16, noise + x + k));
@@ -267,9 +271,8 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
             x += chunk;
         }
     }
-    BlendChromaRow<uint8_t>(src + x, dst + x, luma + (x << subsampling_x), luma_width - (x << subsampling_x),
-                            noise + x, width - x, subsampling_x, index, scaling, scaling_shift, bit_depth, min_value,
-                            max_value);
+    BlendChromaScalar(src, dst, luma, luma_width, noise, x, width, subsampling_x, index, scaling, scaling_shift,
+                      bit_depth, min_value, max_value);
 }
 // Above 8 bits, as BlendLumaRowU16: the index (`merged`) is formed in vector lanes and
 // stored, looked up with scalar loads, and the noise scaled in int32 lanes.
@@ -340,7 +343,7 @@ HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
 
-void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const int32_t* scaling,
+void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const uint8_t* scaling,
                        int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
 }
@@ -349,7 +352,7 @@ void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* noise
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
 }
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
-                         int width, int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling,
+                         int width, int subsampling_x, const ChromaScalingIndex& index, const uint8_t* scaling,
                          int scaling_shift, int bit_depth, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendChromaRowU8)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
                                            scaling_shift, bit_depth, min_value, max_value);
