@@ -25,8 +25,6 @@ namespace {
 
 constexpr int kWidth = 96, kHeight = 64, kFrames = 6;
 
-std::string tool() { return std::string("'") + FILMGRAIN_TOOL_PATH + "'"; }
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // A set for frame k: values depend on k so each frame's parameters are recognisable.
 Av1FilmGrainParams params_for(int k) {

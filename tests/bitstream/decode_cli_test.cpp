@@ -16,9 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tool() { return std::string("'") + FILMGRAIN_TOOL_PATH + "'"; }
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
-
 struct Av1Case {
     int film_grain_test;
     int bit_depth;

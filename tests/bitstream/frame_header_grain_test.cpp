@@ -21,9 +21,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string tool() { return std::string("'") + FILMGRAIN_TOOL_PATH + "'"; }
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
-
 struct HeaderCase {
     const char* name;
     int film_grain_test;

@@ -12,6 +12,9 @@
 
 namespace filmgrain::test_support {
 
+std::string tool() { return std::string("'") + FILMGRAIN_TOOL_PATH + "'"; }
+std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
 namespace fs = std::filesystem;
 
 fs::path fresh_test_dir(const std::string& name) {

@@ -18,6 +18,10 @@ void write_bytes(const std::filesystem::path& p, const std::vector<uint8_t>& byt
 // Frames differ in content and motion so encoders use P/B pictures.
 void write_synthetic_y4m(const std::filesystem::path& p, int width, int height, int frames, int bit_depth);
 
+// The filmgrain tool under test and a path, each single-quoted for a shell command line.
+std::string tool();
+std::string q(const std::filesystem::path& p);
+
 // Runs a shell command; fails the calling test (ADD_FAILURE) with its output when it fails.
 bool run_or_fail(const std::string& cmd);
 
