@@ -12,6 +12,7 @@
 #include <cstring>
 #include <random>
 
+#include "bench_params.hpp"
 #include "av1/av1_synthesis.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
@@ -60,30 +61,6 @@ FgcParams fgc_params(int bd) {
     return p;
 }
 
-Av1FilmGrainParams av1_params() {
-    Av1FilmGrainParams p;
-    p.apply_grain = 1;
-    p.grain_seed = 1234;
-    p.num_y_points = 3;
-    p.point_y_value = {0, 128, 255};
-    p.point_y_scaling = {40, 70, 50};
-    p.num_cb_points = 2;
-    p.point_cb_value = {0, 255};
-    p.point_cb_scaling = {30, 40};
-    p.num_cr_points = 2;
-    p.point_cr_value = {0, 255};
-    p.point_cr_scaling = {35, 45};
-    p.grain_scaling_minus_8 = 3;
-    p.ar_coeff_lag = 3;
-    for (int i = 0; i < 24; i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i % 7) - 3;
-    for (int i = 0; i < 25; i++) p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i % 5) - 2;
-    for (int i = 0; i < 25; i++) p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i % 5) + 2;
-    p.ar_coeff_shift_minus_6 = 1;
-    p.cb_mult = 128 + 10, p.cb_luma_mult = 192, p.cb_offset = 256;
-    p.cr_mult = 128 - 10, p.cr_luma_mult = 180, p.cr_offset = 250;
-    p.overlap_flag = 1;
-    return p;
-}
 
 // args: width, height, bit depth, threads, optimized (0/1), flavour (0 rdd5, 1 vtm)
 void BM_Fgc(benchmark::State& state) {
@@ -107,7 +84,7 @@ void BM_Fgc(benchmark::State& state) {
 void BM_Av1(benchmark::State& state) {
     const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
     av1::Av1Synthesizer s(int(state.range(3)), state.range(4) ? av1::Kernels::kOptimized : av1::Kernels::kReference);
-    Av1FilmGrainParams p = av1_params();
+    Av1FilmGrainParams p = bench::av1_params();
     FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
     for (auto _ : state) {
         p.grain_seed = (p.grain_seed + 7391) & 0xFFFF;  // encoders change the seed every frame

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "bench_params.hpp"
 #include "av1/grain_template_generation.hpp"
 #include "av1/grain_template_optimized.hpp"
 #include "core/simd_targets.hpp"
@@ -18,26 +19,10 @@ using namespace filmgrain;
 
 namespace {
 
-// The synthesis benchmark's parameter set (lag 3: the most filter work), with a
-// configurable lag.
+// The synthesis benchmark's parameter set with a configurable lag.
 Av1FilmGrainParams params(int lag) {
-    Av1FilmGrainParams p;
-    p.apply_grain = 1;
-    p.grain_seed = 1234;
-    p.num_y_points = 3;
-    p.point_y_value = {0, 128, 255};
-    p.point_y_scaling = {40, 70, 50};
-    p.num_cb_points = 2;
-    p.point_cb_value = {0, 255};
-    p.point_cb_scaling = {30, 40};
-    p.num_cr_points = 2;
-    p.point_cr_value = {0, 255};
-    p.point_cr_scaling = {35, 45};
+    Av1FilmGrainParams p = bench::av1_params();
     p.ar_coeff_lag = lag;
-    for (int i = 0; i < 24; i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i % 7) - 3;
-    for (int i = 0; i < 25; i++) p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i % 5) - 2;
-    for (int i = 0; i < 25; i++) p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i % 5) + 2;
-    p.ar_coeff_shift_minus_6 = 1;
     return p;
 }
 
