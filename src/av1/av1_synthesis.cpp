@@ -76,11 +76,25 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
     }
     chroma_index_[1] = {p.chroma_scaling_from_luma != 0, p.cb_mult - 128, p.cb_luma_mult - 128, p.cb_offset - 256};
     chroma_index_[2] = {p.chroma_scaling_from_luma != 0, p.cr_mult - 128, p.cr_luma_mult - 128, p.cr_offset - 256};
-    for (int pl = 0; pl < 3; ++pl) {
-        if (!has_grain_[pl]) continue;
-        scaling32_[pl].resize(std::size_t(1) << bit_depth);
-        for (int i = 0; i < (1 << bit_depth); ++i) scaling32_[pl][std::size_t(i)] = scaling_[pl](i);
-    }
+    // Above 8 bits the optimized blends take the scaling function as q15 int16 (av1_kernels.hpp).
+    if (bit_depth > 8)
+        for (int pl = 0; pl < 3; ++pl)
+            if (has_grain_[pl]) simd::scaling_q15_table(scaling_[pl], p.grain_scaling_minus_8 + 8, scaling_q15_[pl]);
+}
+
+void StripeScratch::reserve(int luma_width) {
+    const std::size_t pitch = std::size_t(noise_stripe_width(luma_width, 0));
+    const std::size_t blocks = std::size_t(num_blocks_across(luma_width));
+    if (noise.size() < pitch * 2) noise.resize(pitch * 2);
+    if (previous.size() < pitch * 2) previous.resize(pitch * 2);
+    if (origins.size() < blocks) origins.resize(blocks);
+    if (block_rows.size() < blocks) block_rows.resize(blocks);
+    if (seams.size() < blocks) seams.resize(blocks);
+}
+
+std::size_t StripeScratch::bytes() const {
+    return (noise.capacity() + previous.capacity()) * sizeof(int16_t) + origins.capacity() * sizeof(int32_t) +
+           block_rows.capacity() * sizeof(const int16_t*) + seams.capacity() * sizeof(uint32_t);
 }
 
 int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
@@ -138,25 +152,58 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     const int luma_y0 = stripe * kBlockSize;
     const int luma_rows = std::min(kBlockSize, height_ - luma_y0);
     const int gmin = -(128 << (bit_depth_ - 8)), gmax = (128 << (bit_depth_ - 8)) - 1;
+    const int blocks = num_blocks_across(width_);
+    scratch.reserve(width_);
     const std::size_t pitch = std::size_t(noise_stripe_width(width_, 0));
-    if (scratch.noise.size() < pitch * kBlockSize) scratch.noise.resize(pitch * kBlockSize);
-    if (scratch.previous.size() < pitch * 2) scratch.previous.resize(pitch * 2);
 
-    // The stripe's noise for one plane in scratch.noise (rows of `pitch`), vertically
-    // cross-faded with the bottom rows of the previous stripe as build_stripe_noise does.
-    auto build_noise = [&](int pl, int sx, int sy, int rows) {
-        build_noise_stripe_rows(templates_[pl], p_.grain_seed, stripe, width_, sx, sy, overlap, bit_depth_, 0, rows,
-                                scratch.noise.data(), std::ptrdiff_t(pitch));
-        if (!overlap || stripe == 0) return;
-        const int stripe_h = kBlockSize >> sy;
-        const int overlap_rows = std::min(rows, 2 >> sy);
-        build_noise_stripe_rows(templates_[pl], p_.grain_seed, stripe - 1, width_, sx, sy, overlap, bit_depth_,
-                                stripe_h, stripe_h + overlap_rows, scratch.previous.data(), std::ptrdiff_t(pitch));
-        const int pw = plane_width(format_, pl, width_);
-        for (int i = 0; i < overlap_rows; ++i) {
-            const int w_old = sy ? 23 : (i == 0 ? 27 : 17), w_new = sy ? 22 : (i == 0 ? 17 : 27);
-            simd::cross_fade_row(scratch.previous.data() + pitch * i, scratch.noise.data() + pitch * i, pw, w_old,
-                                 w_new, gmin, gmax);
+    // Each row's noise is read straight from the template at every block's offset; only the
+    // rows a stripe shares with the one above (overlap_flag: two, one when subsampled
+    // vertically) are built in scratch.noise, cross-faded with the previous stripe's bottom
+    // rows as build_stripe_noise does.
+    auto blend_plane = [&](int pl, int sx, int sy, int rows, auto&& blend_row) {
+        const GrainTemplate& tmpl = templates_[pl];
+        stripe_block_origins(tmpl, p_.grain_seed, stripe, width_, sx, sy, scratch.origins.data());
+        const int block_w = kBlockSize >> sx;
+        const int shared_rows = overlap && stripe > 0 ? std::min(rows, 2 >> sy) : 0;
+        if (shared_rows) {
+            build_noise_stripe_rows(tmpl, p_.grain_seed, stripe, width_, sx, sy, overlap, bit_depth_, 0, shared_rows,
+                                    scratch.noise.data(), std::ptrdiff_t(pitch));
+            const int stripe_h = kBlockSize >> sy;
+            build_noise_stripe_rows(tmpl, p_.grain_seed, stripe - 1, width_, sx, sy, overlap, bit_depth_, stripe_h,
+                                    stripe_h + shared_rows, scratch.previous.data(), std::ptrdiff_t(pitch));
+            const int pw = plane_width(format_, pl, width_);
+            for (int i = 0; i < shared_rows; ++i) {
+                const int w_old = sy ? 23 : (i == 0 ? 27 : 17), w_new = sy ? 22 : (i == 0 ? 17 : 27);
+                simd::cross_fade_row(scratch.previous.data() + pitch * i, scratch.noise.data() + pitch * i, pw,
+                                     w_old, w_new, gmin, gmax);
+            }
+        }
+        simd::BlockNoiseRow row;
+        row.blocks = scratch.block_rows.data();
+        row.block_width = block_w;
+        // The horizontal overlap is faded inside the blends where 16-bit lanes hold it, else
+        // precomputed per row (12 bits).
+        const bool fade_in_blend = overlap && bit_depth_ <= 10;
+        row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
+        row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
+        row.gmin = int16_t(gmin), row.gmax = int16_t(gmax);
+        for (int i = 0; i < rows; ++i) {
+            if (i < shared_rows) {
+                for (int b = 0; b < blocks; ++b)
+                    scratch.block_rows[std::size_t(b)] = scratch.noise.data() + pitch * std::size_t(i) + b * block_w;
+                row.seams = nullptr;
+                row.fade = false;
+            } else {
+                const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
+                for (int b = 0; b < blocks; ++b) scratch.block_rows[std::size_t(b)] = t + scratch.origins[std::size_t(b)];
+                row.fade = fade_in_blend;
+                row.seams = nullptr;
+                if (overlap && !fade_in_blend) {
+                    overlap_seams(scratch.block_rows.data(), blocks, sx, bit_depth_, scratch.seams.data());
+                    row.seams = scratch.seams.data();
+                }
+            }
+            blend_row(i, row);
         }
     };
 
@@ -173,19 +220,17 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             continue;
         }
         if (rows <= 0) continue;
-        build_noise(pl, subx_, suby_, rows);
-        for (int i = 0; i < rows; ++i) {
+        blend_plane(pl, subx_, suby_, rows, [&](int i, const simd::BlockNoiseRow& nz) {
             const int y = y0 + i;
-            const int16_t* nz = scratch.noise.data() + pitch * std::size_t(i);
             if constexpr (sizeof(Pixel) == 1)
                 simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl].table8().data(),
                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
             else
                 simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                           width_, nz, pw, subx_, chroma_index_[pl], scaling32_[pl].data(),
-                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
-        }
+                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_q15_[pl].data(),
+                                           bit_depth_, clip_.min_value, clip_.max_chroma);
+        });
     }
 
     const PlaneView& s = src.planes[0];
@@ -194,17 +239,15 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         copy_rows_without_grain<Pixel>(s, d, luma_y0, luma_rows, width_);
         return;
     }
-    build_noise(0, 0, 0, luma_rows);
-    for (int i = 0; i < luma_rows; ++i) {
+    blend_plane(0, 0, 0, luma_rows, [&](int i, const simd::BlockNoiseRow& nz) {
         const int y = luma_y0 + i;
-        const int16_t* nz = scratch.noise.data() + pitch * std::size_t(i);
         if constexpr (sizeof(Pixel) == 1)
-            simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(), scaling_shift,
-                                    clip_.min_value, clip_.max_luma);
+            simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(),
+                                    scaling_shift, clip_.min_value, clip_.max_luma);
         else
-            simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling32_[0].data(),
-                                     scaling_shift, clip_.min_value, clip_.max_luma);
-    }
+            simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_q15_[0].data(),
+                                     clip_.min_value, clip_.max_luma);
+    });
 }
 
 void Av1SynthesisContext::apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1, Kernels kernels,
@@ -275,7 +318,7 @@ int Av1Synthesizer::threads() const { return pool_->size(); }
 
 std::size_t Av1Synthesizer::working_bytes() const {
     std::size_t n = 0;
-    for (const auto& s : scratch_) n += (s.noise.capacity() + s.previous.capacity()) * sizeof(int16_t);
+    for (const auto& s : scratch_) n += s.bytes();
     if (context_) n += context_->table_bytes();
     return n;
 }
@@ -283,7 +326,7 @@ std::size_t Av1Synthesizer::working_bytes() const {
 std::size_t Av1SynthesisContext::table_bytes() const {
     std::size_t n = 0;
     for (int pl = 0; pl < 3; ++pl)
-        n += templates_[pl].samples.capacity() * sizeof(int16_t) + scaling32_[pl].capacity() * sizeof(int32_t) +
+        n += templates_[pl].samples.capacity() * sizeof(int16_t) + scaling_q15_[pl].capacity() * sizeof(int16_t) +
              scaling_[pl].table8().capacity() + (std::size_t(1) << bit_depth_);
     return n;
 }
@@ -303,13 +346,8 @@ void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, co
     const Av1SynthesisContext& ctx = *context_;
     // Every worker's scratch is sized here, on the calling thread, so that a worker that
     // happened to get no stripe in the first frames cannot allocate later.
-    if (kernels_ == Kernels::kOptimized) {
-        const std::size_t pitch = std::size_t(noise_stripe_width(src.width, 0));
-        for (auto& s : scratch_) {
-            if (s.noise.size() < pitch * kBlockSize) s.noise.resize(pitch * kBlockSize);
-            if (s.previous.size() < pitch * 2) s.previous.resize(pitch * 2);
-        }
-    }
+    if (kernels_ == Kernels::kOptimized)
+        for (auto& s : scratch_) s.reserve(src.width);
     pool_->parallel_for(ctx.stripe_count(), [&](int stripe, int worker) {
         ctx.apply_stripes(src, dst, stripe, stripe + 1, kernels_, scratch_[std::size_t(worker)]);
     });

@@ -28,9 +28,18 @@ enum class Kernels { kOptimized, kReference };
 
 // Working memory of the optimized path for one thread: the noise rows of one stripe of
 // the widest plane and the previous stripe's overlap rows. Reused across stripes and frames.
+// A stripe worker's memory: the two noise rows a stripe shares with the one above and the
+// two rows they fade from, and per block its template origin, template row and overlap seam.
 struct StripeScratch {
     std::vector<int16_t> noise;
     std::vector<int16_t> previous;
+    std::vector<int32_t> origins;
+    std::vector<const int16_t*> block_rows;
+    std::vector<uint32_t> seams;
+
+    // Sizes everything for pictures `luma_width` wide (no-op once large enough).
+    void reserve(int luma_width);
+    std::size_t bytes() const;
 };
 
 class Av1SynthesisContext {
@@ -79,7 +88,7 @@ private:
     ScalingLookup scaling_[3];  // [1], [2] alias luma's function with chroma_scaling_from_luma
     bool has_grain_[3] = {false, false, false};
     ChromaScalingIndex chroma_index_[3];
-    std::vector<int32_t> scaling32_[3];  // scaling_[pl] widened for vector gathers
+    std::vector<int16_t> scaling_q15_[3];  // above 8 bits: scaling_[pl] as the optimized blends take it
 };
 
 // Checks that a view is usable for the given format/bit depth/size (throws

@@ -21,3 +21,19 @@ void build_noise_stripe_rows(const GrainTemplate& tmpl, int grain_seed, int stri
                              std::ptrdiff_t out_stride);
 
 }  // namespace filmgrain::av1
+
+namespace filmgrain::av1 {
+
+// Where each block of stripe `stripe` reads the template (7.18.3.5 offsetX/offsetY): the
+// index in tmpl.samples of the block's first sample, for the num_blocks_across(luma_width)
+// blocks.
+void stripe_block_origins(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
+                          int subsampling_y, int32_t* origins);
+
+// The first two noise samples of each of `count` blocks in one row after the horizontal
+// overlap with the block on the left (columns block_width and block_width + 1 of that
+// block's template row), packed low half first; block 0 keeps its own. block_rows[b] is the
+// template row block b reads.
+void overlap_seams(const int16_t* const* block_rows, int count, int subsampling_x, int bit_depth, uint32_t* seams);
+
+}  // namespace filmgrain::av1

@@ -193,11 +193,45 @@ av1::ScalingLookup random_scaling(std::mt19937& rng, int bd) {
     return av1::ScalingLookup(values, scalings, n, bd);
 }
 
-std::vector<int32_t> widen(const av1::ScalingLookup& s, int bd) {
-    std::vector<int32_t> out(std::size_t(1) << bd);
-    for (int i = 0; i < (1 << bd); i++) out[std::size_t(i)] = s(i);
-    return out;
-}
+// A row's noise as the optimized blends take it: each block's samples in its own buffer (as
+// they lie at scattered template offsets), seams or not; `flat` is the same row contiguous,
+// as the reference blends take it.
+struct RandomBlockNoise {
+    std::vector<std::vector<int16_t>> storage;
+    std::vector<const int16_t*> blocks;
+    std::vector<uint32_t> seams;
+    av1::simd::BlockNoiseRow row;
+    std::vector<int16_t> flat;
+
+    RandomBlockNoise(int width, int block_width, int bd, std::mt19937& rng) {
+        const int gmax = (128 << (bd - 8)) - 1;
+        auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+        const int count = (width + block_width - 1) / block_width;
+        for (int b = 0; b < count; b++) {
+            // a random lead-in so that the blocks are not at any particular alignment
+            std::vector<int16_t> buf(std::size_t(block_width + 2 + u(0, 7)));
+            for (auto& v : buf) v = int16_t(u(-gmax - 1, gmax));
+            storage.push_back(std::move(buf));
+        }
+        for (int b = 0; b < count; b++) blocks.push_back(storage[std::size_t(b)].data() + (storage[std::size_t(b)].size() - std::size_t(block_width) - 2));
+        row.blocks = blocks.data();
+        row.block_width = block_width;
+        // no overlap, precomputed seams, or (up to 10 bits) the fade done in the kernel
+        const int mode = u(0, bd <= 10 ? 2 : 1);
+        if (mode == 1) {
+            for (int b = 0; b < count; b++)
+                seams.push_back(uint32_t(uint16_t(u(-gmax - 1, gmax))) | uint32_t(uint16_t(u(-gmax - 1, gmax))) << 16);
+            row.seams = seams.data();
+        } else if (mode == 2) {
+            const bool subsampled = block_width == 16;
+            row.fade = true;
+            row.fade_old[0] = int16_t(subsampled ? 23 : 27), row.fade_old[1] = int16_t(subsampled ? 0 : 17);
+            row.fade_new[0] = int16_t(subsampled ? 22 : 17), row.fade_new[1] = int16_t(subsampled ? 32 : 27);
+            row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
+        }
+        for (int x = 0; x < width; x++) flat.push_back(row.at(x));
+    }
+};
 
 TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
     for (int iter = 0; iter < 300; iter++) {
@@ -206,39 +240,50 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
         const int width = uniform(0, 3) ? uniform(1, 150) : uniform(240, 700), subx = uniform(0, 1);
         const int luma_width = subx ? width * 2 - uniform(0, 1) : width;
         const av1::ScalingLookup scaling = random_scaling(rng, bd);
-        const std::vector<int32_t> table = widen(scaling, bd);
         const int shift = uniform(8, 11);
+        std::vector<int16_t> q15;
+        av1::simd::scaling_q15_table(scaling, shift, q15);
         const av1::ClipLimits clip = av1::clip_limits(uniform(0, 1), bd, uniform(0, 2));
-        const int gmax = (128 << (bd - 8)) - 1;
-        std::vector<int16_t> noise(static_cast<std::size_t>(width));
-        for (auto& n : noise) n = int16_t(uniform(-gmax - 1, gmax));
+        const RandomBlockNoise luma_noise(width, 32, bd, rng);
+        const RandomBlockNoise chroma_noise(width, 32 >> subx, bd, rng);
         av1::ChromaScalingIndex index{uniform(0, 3) == 0, uniform(-128, 127), uniform(-128, 127), uniform(-256, 255)};
         auto run = [&](auto zero) {
             using Pixel = decltype(zero);
             std::vector<Pixel> src(static_cast<std::size_t>(width)), luma(static_cast<std::size_t>(luma_width)), want(src.size()), got(src.size());
             for (auto& s : src) s = Pixel(uniform(0, (1 << bd) - 1));
             for (auto& s : luma) s = Pixel(uniform(0, (1 << bd) - 1));
-            av1::blend_luma_row<Pixel>(src.data(), want.data(), noise.data(), width, scaling, shift, clip.min_value,
-                                       clip.max_luma);
+            av1::blend_luma_row<Pixel>(src.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
+                                       clip.min_value, clip.max_luma);
             if constexpr (sizeof(Pixel) == 1)
-                av1::simd::blend_luma_row_u8(src.data(), got.data(), noise.data(), width, scaling.table8().data(), shift,
-                                             clip.min_value, clip.max_luma);
+                av1::simd::blend_luma_row_u8(src.data(), got.data(), luma_noise.row, width, scaling.table8().data(),
+                                             shift, clip.min_value, clip.max_luma);
             else
-                av1::simd::blend_luma_row_u16(src.data(), got.data(), noise.data(), width, table.data(), shift,
+                av1::simd::blend_luma_row_u16(src.data(), got.data(), luma_noise.row, width, q15.data(),
                                               clip.min_value, clip.max_luma);
             ASSERT_EQ(got, want) << "luma, iteration " << iter << " bd " << bd << " width " << width;
-            av1::blend_chroma_row<Pixel>(src.data(), want.data(), luma.data(), luma_width, noise.data(), width, subx,
-                                         index, scaling, shift, bd, clip.min_value, clip.max_chroma);
+            av1::blend_chroma_row<Pixel>(src.data(), want.data(), luma.data(), luma_width, chroma_noise.flat.data(),
+                                         width, subx, index, scaling, shift, bd, clip.min_value, clip.max_chroma);
             if constexpr (sizeof(Pixel) == 1)
-                av1::simd::blend_chroma_row_u8(src.data(), got.data(), luma.data(), luma_width, noise.data(), width,
-                                               subx, index, scaling.table8().data(), shift, bd, clip.min_value,
-                                               clip.max_chroma);
+                av1::simd::blend_chroma_row_u8(src.data(), got.data(), luma.data(), luma_width, chroma_noise.row,
+                                               width, subx, index, scaling.table8().data(), shift, bd,
+                                               clip.min_value, clip.max_chroma);
             else
-                av1::simd::blend_chroma_row_u16(src.data(), got.data(), luma.data(), luma_width, noise.data(), width,
-                                                subx, index, table.data(), shift, bd, clip.min_value,
+                av1::simd::blend_chroma_row_u16(src.data(), got.data(), luma.data(), luma_width, chroma_noise.row,
+                                                width, subx, index, q15.data(), bd, clip.min_value,
                                                 clip.max_chroma);
             ASSERT_EQ(got, want) << "chroma, iteration " << iter << " bd " << bd << " width " << width << " subx "
                                  << subx << " luma width " << luma_width;
+            // in place, as the synthesizer runs on a decoder's picture
+            std::vector<Pixel> in_place = src;
+            if constexpr (sizeof(Pixel) == 1)
+                av1::simd::blend_luma_row_u8(in_place.data(), in_place.data(), luma_noise.row, width,
+                                             scaling.table8().data(), shift, clip.min_value, clip.max_luma);
+            else
+                av1::simd::blend_luma_row_u16(in_place.data(), in_place.data(), luma_noise.row, width, q15.data(),
+                                              clip.min_value, clip.max_luma);
+            av1::blend_luma_row<Pixel>(src.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
+                                       clip.min_value, clip.max_luma);
+            ASSERT_EQ(in_place, want) << "luma in place, iteration " << iter;
         };
         if (bd == 8)
             run(uint8_t{});

@@ -1,29 +1,66 @@
 // Optimized twins of the AV1 noise application stages (Highway, runtime dispatch over the
 // targets the CPU supports), each bit-equal to the scalar reference named beside it
 // (tests/unit/simd_equivalence_test.cpp checks every target on random input).
-// Scaling functions are passed as int32 tables of 1 << bit_depth entries (the values of
-// ScalingLookup::operator()) above 8 bits, and as the 256-byte ScalingLookup::table8() at
-// 8 bits.
+//
+// The noise of a picture row is given block by block (BlockNoiseRow), the way 7.18.3.5 lays
+// it out, so the blends read it straight from the grain template at each block's random
+// offset instead of from a copied noise stripe.
+//
+// Scaling functions: at 8 bits the spec's 256-byte ScalingLut (ScalingLookup::table8()) and
+// the scaling shift; above 8 bits a table of 1 << bit_depth int16 entries holding
+// scale_lut(i) << (15 - scaling_shift) (scaling_q15_table), so that Round2(scale * noise,
+// shift) is one rounding high multiply (pmulhrsw) in 16-bit lanes: scale <= 255 and
+// shift >= 8 keep the shifted scale below 2^15, and the result below 2^12.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "av1/grain_blending.hpp"
 
 namespace filmgrain::av1::simd {
 
-// Twin of blend_luma_row.
-void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const uint8_t* scaling,
-                       int scaling_shift, int min_value, int max_value);
-void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
-                        int scaling_shift, int min_value, int max_value);
+// One row's noise: column x of the row lies in block b = x / block_width and takes
+// blocks[b][x - b * block_width], except for the first two samples of every block but the
+// first when the blocks overlap horizontally (overlap_flag): those are faded with columns
+// block_width and block_width + 1 of the left block, either given as seams[b] (low 16 bits
+// first; seams[0] holds blocks[0][0..1] unchanged) or, when seams is null and fade is set,
+// computed on the fly as clamp((left * fade_old[k] + own * fade_new[k] + 16) >> 5) (only up to
+// 10 bits, where that sum fits 16-bit lanes).
+struct BlockNoiseRow {
+    const int16_t* const* blocks = nullptr;
+    const uint32_t* seams = nullptr;
+    int block_width = 32;  // 32 >> subsampling_x
+    bool fade = false;
+    int16_t fade_old[2] = {0, 0}, fade_new[2] = {32, 32};
+    int16_t gmin = -128, gmax = 127;
 
-// Twin of blend_chroma_row.
-void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
-                         int width, int subsampling_x, const ChromaScalingIndex& index, const uint8_t* scaling,
-                         int scaling_shift, int bit_depth, int min_value, int max_value);
+    int16_t at(int x) const {
+        const int b = x / block_width, k = x - b * block_width;
+        if (seams && k < 2) return int16_t(uint16_t(seams[b] >> (16 * k)));
+        if (fade && b > 0 && k < 2) {
+            const int v = (blocks[b - 1][block_width + k] * fade_old[k] + blocks[b][k] * fade_new[k] + 16) >> 5;
+            return int16_t(v < gmin ? gmin : v > gmax ? gmax : v);
+        }
+        return blocks[b][k];
+    }
+};
+
+// scale_lut(i) << (15 - scaling_shift) for i < 1 << bit_depth, into `out` (resized).
+void scaling_q15_table(const ScalingLookup& scaling, int scaling_shift, std::vector<int16_t>& out);
+
+// Twins of blend_luma_row.
+void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                       const uint8_t* scaling, int scaling_shift, int min_value, int max_value);
+void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                        const int16_t* scaling_q15, int min_value, int max_value);
+
+// Twins of blend_chroma_row.
+void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                         const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                         const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                          const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                          const int16_t* scaling_q15, int bit_depth, int min_value, int max_value);
 
 // Twin of the vertical overlap of build_stripe_noise: cur[x] = clamp((old[x] * old_weight +
 // cur[x] * new_weight + 16) >> 5, gmin, gmax).

@@ -5,6 +5,7 @@
 #include "hwy/highway.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "av1/simd/av1_kernels.hpp"
 
@@ -13,42 +14,106 @@ namespace filmgrain::av1::simd {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Round2(scale * noise, shift) added to the sample and clipped, in int32 lanes (the
-// product needs up to 9 + 13 bits at 12-bit depth).
-template <class D, class V>
-HWY_INLINE V AddScaledNoise(D d, V orig, V scale, V noise, int shift, V round, V vmin, V vmax) {
-    const auto n = hn::ShiftRightSame(hn::Add(hn::Mul(scale, noise), round), shift);
-    (void)d;
-    return hn::Min(hn::Max(hn::Add(orig, n), vmin), vmax);
+// 16-bit lanes, at most 16: a block row (16 or 32 samples) is then whole vectors on every
+// target, and a vector never spans two blocks.
+using D16 = hn::CappedTag<int16_t, 16>;
+using D32 = hn::CappedTag<int32_t, 8>;  // as many lanes as D16 has, or half
+constexpr int kChunk = 256;             // samples looked up at once
+
+// Walks a row's block noise vector by vector (lane counts divide the block width).
+class BlockNoiseCursor {
+public:
+    BlockNoiseCursor(const BlockNoiseRow& row, int x) : row_(row) {
+        b_ = x / row.block_width;
+        k_ = x - b_ * row.block_width;
+        const D16 d16;
+        const hn::Repartition<uint32_t, D16> d32;
+        auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
+        w_old_ = hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1])));
+        w_new_ = hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1])));
+    }
+    // The noise of the next Lanes(d) samples.
+    HWY_INLINE hn::Vec<D16> Next(D16 d16) {
+        const int n = int(hn::Lanes(d16));
+        const hn::Repartition<uint32_t, D16> d32;
+        const int16_t* own = row_.blocks[b_];
+        auto v = hn::LoadU(d16, own + k_);
+        if (k_ < 2 && (row_.seams || (row_.fade && b_ > 0))) {
+            if (n < 2) {
+                v = hn::Set(d16, row_.at(b_ * row_.block_width + k_));
+            } else if (row_.seams) {
+                v = hn::IfThenElse(hn::FirstN(d16, 2), hn::BitCast(d16, hn::Set(d32, row_.seams[b_])), v);
+            } else {
+                // Horizontal overlap with the left block (7.18.3.5), in every lane, kept in the first two.
+                uint32_t left_pair;
+                std::memcpy(&left_pair, row_.blocks[b_ - 1] + row_.block_width, sizeof left_pair);
+                const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
+                const auto sum = hn::Add(hn::Add(hn::Mul(left, w_old_), hn::Mul(v, w_new_)), hn::Set(d16, 16));
+                const auto faded =
+                    hn::Min(hn::Max(hn::ShiftRight<5>(sum), hn::Set(d16, row_.gmin)), hn::Set(d16, row_.gmax));
+                v = hn::IfThenElse(hn::FirstN(d16, 2), faded, v);
+            }
+        }
+        k_ += n;
+        if (k_ == row_.block_width) {
+            k_ = 0;
+            ++b_;
+        }
+        return v;
+    }
+
+private:
+    const BlockNoiseRow& row_;
+    int b_, k_;
+    hn::Vec<D16> w_old_, w_new_;
+};
+
+// dst = clip(src + Round2(scale * noise, shift)) for `count` samples from x (a multiple of
+// the lane count), the scales read by `scale_at(k)` as pre-shifted q15 int16 lanes.
+template <typename Pixel, class ScaleAt>
+HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow& row, int x, int count,
+                              ScaleAt scale_at, int min_value, int max_value) {
+    const D16 d16;
+    const hn::Rebind<Pixel, D16> dp;
+    const hn::RebindToUnsigned<D16> du16;
+    const int n = int(hn::Lanes(d16));
+    const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
+    BlockNoiseCursor noise(row, x);
+    for (int k = 0; k < count; k += n) {
+        const auto add = hn::MulFixedPoint15(scale_at(k), noise.Next(d16));
+        hn::Vec<D16> orig;
+        if constexpr (sizeof(Pixel) == 1)
+            orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
+        else
+            orig = hn::BitCast(d16, hn::LoadU(dp, src + x + k));
+        const auto v = hn::Min(hn::Max(hn::Add(orig, add), vmin), vmax);
+        if constexpr (sizeof(Pixel) == 1)
+            hn::StoreU(hn::DemoteTo(dp, v), dp, dst + x + k);
+        else
+            hn::StoreU(hn::BitCast(dp, v), dp, dst + x + k);
+    }
 }
 
-template <typename Pixel>
-void BlendLumaRow(const Pixel* src, Pixel* dst, const int16_t* noise, int width, const int32_t* scaling,
-                  int scaling_shift, int min_value, int max_value) {
-    const hn::ScalableTag<int32_t> d32;
-    const hn::Rebind<Pixel, decltype(d32)> dp;
-    const hn::Rebind<int16_t, decltype(d32)> d16;
-    const int n = int(hn::Lanes(d32));
-    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
-    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
-    int x = 0;
-    for (; x + n <= width; x += n) {
-        const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x));
-        const auto scale = hn::GatherIndex(d32, scaling, orig);
-        const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x));
-        hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, scale, nz, scaling_shift, round, vmin, vmax)), dp,
-                   dst + x);
-    }
-    for (; x < width; ++x) {
-        const int orig = src[x];
-        const int v = orig + round2_signed(scaling[orig] * noise[x], scaling_shift);
-        dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
-    }
+// Scales of a byte buffer, widened and shifted to q15.
+HWY_INLINE auto ByteScalesQ15(const uint8_t* scale, int up_shift) {
+    return [scale, up_shift](int k) {
+        const D16 d16;
+        const hn::Rebind<uint8_t, D16> d8;
+        const hn::RebindToUnsigned<D16> du16;
+        return hn::ShiftLeftSame(hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, scale + k))), up_shift);
+    };
 }
+
+HWY_INLINE auto Q15Scales(const int16_t* scale) {
+    return [scale](int k) { return hn::Load(D16(), scale + k); };
+}
+
+// Round2(scale * noise, shift) from a q15 scale, as pmulhrsw rounds it.
+HWY_INLINE int MulQ15(int scale_q15, int noise) { return (scale_q15 * noise + (1 << 14)) >> 15; }
 
 // Luma co-sited with chroma lanes [x, x + n): the average of each horizontal pair when
 // subsampled. Pairs are read as one wider lane and split, which needs no shuffles.
-template <typename Pixel, class D32>
+template <typename Pixel>
 HWY_INLINE hn::Vec<D32> CositedLuma(D32 d32, const Pixel* luma, int x, int subsampling_x) {
     if (!subsampling_x) return hn::PromoteTo(d32, hn::LoadU(hn::Rebind<Pixel, D32>(), luma + x));
     using Wide = hwy::MakeWide<Pixel>;
@@ -64,40 +129,40 @@ HWY_INLINE hn::Vec<D32> CositedLuma(D32 d32, const Pixel* luma, int x, int subsa
         return hn::PromoteTo(d32, avg);
 }
 
-// The chroma scaling index of AV1 7.18.3.5 in int32 lanes: the co-sited luma when chroma
-// scales from luma, else (luma * cb_luma_mult + chroma * cb_mult) >> 6 plus the offset,
-// clipped to the sample range. `orig` is only read in the second case.
-template <class D32, class V>
-HWY_INLINE V ChromaScalingIndexLanes(D32 d32, V avg_luma, V orig, bool from_luma, V luma_mult, V mult, V offset,
-                                     V pixel_max) {
-    if (from_luma) return avg_luma;
-    const auto combined = hn::Add(hn::Mul(avg_luma, luma_mult), hn::Mul(orig, mult));
-    return hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), pixel_max);
-}
-
-// Above 8 bits: `count` samples (a multiple of the lane count) whose scaling values were
-// looked up into `scale`, scaled noise added in int32 lanes.
-template <class D32>
-HWY_INLINE void AddLookedUpNoiseU16(D32 d32, const uint16_t* src, uint16_t* dst, const int16_t* noise,
-                                    const int32_t* scale, int count, int scaling_shift, hn::Vec<D32> round,
-                                    hn::Vec<D32> vmin, hn::Vec<D32> vmax) {
-    const hn::Rebind<uint16_t, D32> dp;
-    const hn::Rebind<int16_t, D32> d16;
-    for (int k = 0; k < count; k += int(hn::Lanes(d32))) {
-        const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + k));
-        const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + k));
-        hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, hn::Load(d32, scale + k), nz, scaling_shift, round,
-                                                   vmin, vmax)),
-                   dp, dst + k);
+// The chroma scaling index (`merged`, AV1 7.18.3.5) of `count` samples from x (a multiple of
+// the int32 lane count) into out[0..count): the co-sited luma when chroma scales from luma,
+// else (luma * cb_luma_mult + chroma * cb_mult) >> 6 plus the offset, clipped to the sample
+// range.
+template <typename Pixel, typename Out>
+HWY_INLINE void ChromaScalingIndices(const Pixel* src, const Pixel* luma, int x, int count, int subsampling_x,
+                                     const ChromaScalingIndex& index, int bit_depth, Out* out) {
+    const D32 d32;
+    const hn::Rebind<Pixel, D32> dp;
+    const hn::Rebind<Out, D32> dout;
+    const int n = int(hn::Lanes(d32));
+    const auto luma_mult = hn::Set(d32, index.luma_mult), mult = hn::Set(d32, index.mult);
+    const auto offset = hn::Set(d32, index.offset * (1 << (bit_depth - 8)));
+    const auto pixel_max = hn::Set(d32, (1 << bit_depth) - 1);
+    for (int k = 0; k < count; k += n) {
+        auto m = CositedLuma(d32, luma, x + k, subsampling_x);
+        if (!index.from_luma) {
+            const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
+            const auto combined = hn::Add(hn::Mul(m, luma_mult), hn::Mul(orig, mult));
+            m = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(combined), offset), hn::Zero(d32)), pixel_max);
+        }
+        if constexpr (sizeof(Out) == 4)
+            hn::Store(m, d32, out + k);
+        else
+            hn::Store(hn::DemoteTo(dout, m), dout, out + k);
     }
 }
 
-// The samples the vector loops leave, one by one (AV1 7.18.3.5), from an int32 or a byte
-// scaling table.
-template <typename Pixel, typename Scale>
-void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise, int x,
-                       int width, int subsampling_x, const ChromaScalingIndex& index, const Scale* scaling,
-                       int scaling_shift, int bit_depth, int min_value, int max_value) {
+// The samples the vector loops leave, one by one (AV1 7.18.3.5); scaled(merged, noise) is
+// Round2(scale_lut(merged) * noise, shift).
+template <typename Pixel, class Scaled>
+void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const BlockNoiseRow& noise,
+                       int x, int width, int subsampling_x, const ChromaScalingIndex& index, Scaled scaled,
+                       int bit_depth, int min_value, int max_value) {
     const int pixel_max = (1 << bit_depth) - 1;
     for (; x < width; ++x) {
         const int lx = x << subsampling_x;
@@ -115,199 +180,126 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
             merged = (combined >> 6) + index.offset * (1 << (bit_depth - 8));
             merged = merged < 0 ? 0 : merged > pixel_max ? pixel_max : merged;
         }
-        const int v = orig + round2_signed(scaling[merged] * noise[x], scaling_shift);
+        const int v = orig + scaled(merged, noise.at(x));
         dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
 }
 
-template <typename Pixel>
-void BlendChromaRow(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise, int width,
-                    int subsampling_x, const ChromaScalingIndex& index, const int32_t* scaling, int scaling_shift,
-                    int bit_depth, int min_value, int max_value) {
-    const hn::ScalableTag<int32_t> d32;
-    const hn::Rebind<Pixel, decltype(d32)> dp;
-    const hn::Rebind<int16_t, decltype(d32)> d16;
-    const int n = int(hn::Lanes(d32));
-    const int pixel_max = (1 << bit_depth) - 1;
-    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
-    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
-    const auto luma_mult = hn::Set(d32, index.luma_mult), mult = hn::Set(d32, index.mult);
-    const auto offset = hn::Set(d32, index.offset * (1 << (bit_depth - 8)));
-    const auto vpixel_max = hn::Set(d32, pixel_max);
-    // The last chroma column of an odd-width subsampled picture pairs the last luma sample
-    // with itself; that column is left to the scalar tail.
-    const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
-    int x = 0;
-    for (; x + n <= vec_width; x += n) {
-        const auto avg_luma = CositedLuma(d32, luma, x, subsampling_x);
-        const auto orig = hn::PromoteTo(d32, hn::LoadU(dp, src + x));
-        const auto merged =
-            ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vpixel_max);
-        const auto scale = hn::GatherIndex(d32, scaling, merged);
-        const auto nz = hn::PromoteTo(d32, hn::LoadU(d16, noise + x));
-        hn::StoreU(hn::DemoteTo(dp, AddScaledNoise(d32, orig, scale, nz, scaling_shift, round, vmin, vmax)), dp,
-                   dst + x);
-    }
-    BlendChromaScalar(src, dst, luma, luma_width, noise, x, width, subsampling_x, index, scaling, scaling_shift,
-                      bit_depth, min_value, max_value);
-}
-
 // 8 bits: the scaling function is the spec's 256-byte ScalingLut (values 0..255, made once
-// per parameter set) and the look-up sixteen 16-entry byte shuffles, one per high nibble of
-// the index, each kept where that nibble matches. Three vector operations per 16 entries
-// replace a scalar load and store per sample, which were the bound of the 8-bit blends.
+// per parameter set), looked up with sixteen 16-entry byte shuffles. A shuffle yields 0 in
+// lanes whose index has bit 7 set, so an index saturated upwards by 16 per step stays valid
+// (below 128) exactly for the steps j >= its high nibble; with each step's table the XOR of
+// two neighbouring 16-entry rows of the LUT, the XOR over those steps leaves the wanted row.
+// The indices from 128 up take a second chain on index - 128. Three vector operations per
+// 16 entries and no per-step constants replace a scalar load and store per sample.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const uint8_t* table) {
     const hn::ScalableTag<uint8_t> du8;
     const int n = int(hn::Lanes(du8));
-    const auto low_mask = hn::Set(du8, uint8_t(15));
     int k = 0;
     // Byte shuffles need whole 16-byte blocks: a one-lane (scalar) target loads instead.
-    for (; n >= 16 && k + n <= count; k += n) {
-        const auto x = hn::LoadU(du8, index + k);
-        const auto lo = hn::And(x, low_mask);
-        const auto hi = hn::ShiftRight<4>(x);
-        auto r = hn::TableLookupBytes(hn::LoadDup128(du8, table), lo);
-        for (int j = 1; j < 16; ++j)
-            r = hn::IfThenElse(hn::Eq(hi, hn::Set(du8, uint8_t(j))),
-                               hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * j), lo), r);
-        hn::StoreU(r, du8, out + k);
+    if (n >= 16 && count >= n) {
+        using V = hn::Vec<decltype(du8)>;
+        V rows[16];
+        for (int j = 0; j < 16; ++j) {
+            rows[j] = hn::LoadDup128(du8, table + 16 * j);
+            if (j % 8 != 7) rows[j] = hn::Xor(rows[j], hn::LoadDup128(du8, table + 16 * (j + 1)));
+        }
+        const auto step = hn::Set(du8, uint8_t(16)), top = hn::Set(du8, uint8_t(0x80));
+        for (; k + n <= count; k += n) {
+            auto lo = hn::LoadU(du8, index + k);
+            auto hi = hn::Xor(lo, top);
+            auto r_lo = hn::TableLookupBytesOr0(rows[7], lo);
+            auto r_hi = hn::TableLookupBytesOr0(rows[15], hi);
+            for (int j = 6; j >= 0; --j) {
+                lo = hn::SaturatedAdd(lo, step);
+                hi = hn::SaturatedAdd(hi, step);
+                r_lo = hn::Xor(r_lo, hn::TableLookupBytesOr0(rows[j], lo));
+                r_hi = hn::Xor(r_hi, hn::TableLookupBytesOr0(rows[8 + j], hi));
+            }
+            hn::StoreU(hn::Xor(r_lo, r_hi), du8, out + k);
+        }
     }
     for (; k < count; ++k) out[k] = table[index[k]];
 }
 
-// 8 bits: scale * noise fits int16 (255 * 128), and Round2(x, s) equals
-// ((x >> (s - 1)) + 1) >> 1, which stays in int16 too. The 256-entry scaling look-up is done
-// with scalar loads into a small buffer: on the CPUs measured that beats vector gathers.
-void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const uint8_t* scaling,
+// 8 bits: scale * noise in 16-bit lanes (255 * 128 fits), rounded by pmulhrsw with the
+// scale shifted up to q15.
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width, const uint8_t* scaling,
                     int scaling_shift, int min_value, int max_value) {
-    const hn::ScalableTag<int16_t> d16;
-    const hn::Rebind<uint8_t, decltype(d16)> d8;
-    const hn::Rebind<uint16_t, decltype(d16)> du16;
-    const int n = int(hn::Lanes(d16));
-    const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
-    const auto one = hn::Set(d16, int16_t(1));
-    constexpr int kChunk = 256;
+    const int n = int(hn::Lanes(D16()));
+    const int vec_end = width / n * n;
     HWY_ALIGN uint8_t scale[kChunk];
-    int x = 0;
-    while (x + n <= width) {
-        const int chunk = std::min(kChunk, (width - x) / n * n);
+    for (int x = 0; x < vec_end; x += kChunk) {
+        const int chunk = std::min(kChunk, vec_end - x);
         LookUpScaling8(src + x, scale, chunk, scaling);
-        for (int k = 0; k < chunk; k += n) {
-            const auto s16 = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, scale + k)));
-            const auto prod = hn::Mul(s16, hn::LoadU(d16, noise + x + k));
-            const auto add = hn::ShiftRight<1>(hn::Add(hn::ShiftRightSame(prod, scaling_shift - 1), one));
-            const auto orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(d8, src + x + k)));
-            const auto v = hn::Min(hn::Max(hn::Add(orig, add), vmin), vmax);
-            hn::StoreU(hn::DemoteTo(d8, v), d8, dst + x + k);
-        }
-        x += chunk;
+        AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
-    for (; x < width; ++x) {
-        const int orig = src[x];
-        const int v = orig + round2_signed(scaling[orig] * noise[x], scaling_shift);
+    for (int x = vec_end; x < width; ++x) {
+        const int v = src[x] + round2_signed(scaling[src[x]] * noise.at(x), scaling_shift);
         dst[x] = static_cast<uint8_t>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
 }
-// Above 8 bits the product needs int32 lanes, but the look-up is still done as for 8 bits:
-// scalar loads into a buffer measured faster than GatherIndex on the CPUs tried.
-void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
-                     int scaling_shift, int min_value, int max_value) {
-    const hn::ScalableTag<int32_t> d32;
-    const int n = int(hn::Lanes(d32));
-    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
-    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
-    constexpr int kChunk = 256;
-    HWY_ALIGN int32_t scale[kChunk];
-    int x = 0;
-    while (x + n <= width) {
-        const int chunk = std::min(kChunk, (width - x) / n * n);
-        for (int k = 0; k < chunk; ++k) scale[k] = scaling[src[x + k]];
-        AddLookedUpNoiseU16(d32, src + x, dst + x, noise + x, scale, chunk, scaling_shift, round, vmin, vmax);
-        x += chunk;
+
+// Above 8 bits the 1 << bit_depth entry table is looked up with scalar loads into a small
+// buffer: on the CPUs measured that beats vector gathers.
+void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                     const int16_t* scaling_q15, int min_value, int max_value) {
+    const int n = int(hn::Lanes(D16()));
+    const int vec_end = width / n * n;
+    HWY_ALIGN int16_t scale[kChunk];
+    for (int x = 0; x < vec_end; x += kChunk) {
+        const int chunk = std::min(kChunk, vec_end - x);
+        for (int k = 0; k < chunk; ++k) scale[k] = scaling_q15[src[x + k]];
+        AddBlockNoise(src, dst, noise, x, chunk, Q15Scales(scale), min_value, max_value);
     }
-    BlendLumaRow<uint16_t>(src + x, dst + x, noise + x, width - x, scaling, scaling_shift, min_value, max_value);
+    for (int x = vec_end; x < width; ++x) {
+        const int v = src[x] + MulQ15(scaling_q15[src[x]], noise.at(x));
+        dst[x] = static_cast<uint16_t>(v < min_value ? min_value : v > max_value ? max_value : v);
+    }
 }
-// 8 bits, as BlendLumaRowU8: the index (`merged`) is formed in 32-bit lanes and stored as
-// bytes, looked up with scalar loads, and the noise is scaled in 16-bit lanes.
-void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
-                      int width, int subsampling_x, const ChromaScalingIndex& index, const uint8_t* scaling,
-                      int scaling_shift, int bit_depth, int min_value, int max_value) {
-    const hn::ScalableTag<int16_t> d16;
-    const hn::Rebind<uint8_t, decltype(d16)> d8;
-    const hn::Rebind<uint16_t, decltype(d16)> du16;
-    const hn::ScalableTag<int32_t> d32;
-    const hn::Rebind<uint8_t, decltype(d32)> d8q;
-    const int n = int(hn::Lanes(d16)), n32 = int(hn::Lanes(d32));
-    const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
-    const auto one = hn::Set(d16, int16_t(1));
-    const auto luma_mult = hn::Set(d32, index.luma_mult), mult = hn::Set(d32, index.mult);
-    const auto offset = hn::Set(d32, index.offset);
-    const auto vmax8 = hn::Set(d32, 255);
-    constexpr int kChunk = 256;
+
+// The last chroma column of an odd-width subsampled picture pairs the last luma sample with
+// itself; that column is left to the scalar tail.
+inline int ChromaVectorEnd(int width, int luma_width, int subsampling_x) {
+    const int n = int(hn::Lanes(D16()));
+    const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
+    return vec_width / n * n;
+}
+
+void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                      const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                      const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+    const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
-    // The last chroma column of an odd-width subsampled picture is left to the scalar tail.
-    const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
-    int x = 0;
-    if (n % n32 == 0) {
-        while (x + n <= vec_width) {
-            const int chunk = std::min(kChunk, (vec_width - x) / n * n);
-            for (int k = 0; k < chunk; k += n32) {
-                const auto avg_luma = CositedLuma(d32, luma, x + k, subsampling_x);
-                const auto orig = index.from_luma ? avg_luma : hn::PromoteTo(d32, hn::LoadU(d8q, src + x + k));
-                const auto m =
-                    ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vmax8);
-                hn::Store(hn::DemoteTo(d8q, m), d8q, merged + k);
-            }
-            LookUpScaling8(merged, scale, chunk, scaling);
-            for (int k = 0; k < chunk; k += n) {
-                const auto s16 = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, scale + k)));
-                const auto prod = hn::Mul(s16, hn::LoadU(d16, noise + x + k));
-                const auto add = hn::ShiftRight<1>(hn::Add(hn::ShiftRightSame(prod, scaling_shift - 1), one));
-                const auto orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(d8, src + x + k)));
-                const auto v = hn::Min(hn::Max(hn::Add(orig, add), vmin), vmax);
-                hn::StoreU(hn::DemoteTo(d8, v), d8, dst + x + k);
-            }
-            x += chunk;
-        }
+    for (int x = 0; x < vec_end; x += kChunk) {
+        const int chunk = std::min(kChunk, vec_end - x);
+        ChromaScalingIndices(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
+        LookUpScaling8(merged, scale, chunk, scaling);
+        AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
-    BlendChromaScalar(src, dst, luma, luma_width, noise, x, width, subsampling_x, index, scaling, scaling_shift,
-                      bit_depth, min_value, max_value);
+    BlendChromaScalar(
+        src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
+        [&](int merged_index, int nz) { return round2_signed(scaling[merged_index] * nz, scaling_shift); }, bit_depth,
+        min_value, max_value);
 }
-// Above 8 bits, as BlendLumaRowU16: the index (`merged`) is formed in vector lanes and
-// stored, looked up with scalar loads, and the noise scaled in int32 lanes.
+
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                       const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                       const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
-    const hn::ScalableTag<int32_t> d32;
-    const hn::Rebind<uint16_t, decltype(d32)> dp;
-    const int n = int(hn::Lanes(d32));
-    const auto round = hn::Set(d32, 1 << (scaling_shift - 1));
-    const auto vmin = hn::Set(d32, min_value), vmax = hn::Set(d32, max_value);
-    const auto luma_mult = hn::Set(d32, index.luma_mult), mult = hn::Set(d32, index.mult);
-    const auto offset = hn::Set(d32, index.offset * (1 << (bit_depth - 8)));
-    const auto vpixel_max = hn::Set(d32, (1 << bit_depth) - 1);
-    constexpr int kChunk = 256;
+                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                       const int16_t* scaling_q15, int bit_depth, int min_value, int max_value) {
+    const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN int32_t merged[kChunk];
-    HWY_ALIGN int32_t scale[kChunk];
-    // The last chroma column of an odd-width subsampled picture is left to the scalar tail.
-    const int vec_width = (subsampling_x && (luma_width & 1)) ? width - 1 : width;
-    int x = 0;
-    while (x + n <= vec_width) {
-        const int chunk = std::min(kChunk, (vec_width - x) / n * n);
-        for (int k = 0; k < chunk; k += n) {
-            const auto avg_luma = CositedLuma(d32, luma, x + k, subsampling_x);
-            const auto orig = index.from_luma ? avg_luma : hn::PromoteTo(d32, hn::LoadU(dp, src + x + k));
-            hn::Store(ChromaScalingIndexLanes(d32, avg_luma, orig, index.from_luma, luma_mult, mult, offset, vpixel_max),
-                      d32, merged + k);
-        }
-        for (int k = 0; k < chunk; ++k) scale[k] = scaling[merged[k]];
-        AddLookedUpNoiseU16(d32, src + x, dst + x, noise + x, scale, chunk, scaling_shift, round, vmin, vmax);
-        x += chunk;
+    HWY_ALIGN int16_t scale[kChunk];
+    for (int x = 0; x < vec_end; x += kChunk) {
+        const int chunk = std::min(kChunk, vec_end - x);
+        ChromaScalingIndices(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
+        for (int k = 0; k < chunk; ++k) scale[k] = scaling_q15[merged[k]];
+        AddBlockNoise(src, dst, noise, x, chunk, Q15Scales(scale), min_value, max_value);
     }
-    BlendChromaRow<uint16_t>(src + x, dst + x, luma + (x << subsampling_x), luma_width - (x << subsampling_x),
-                             noise + x, width - x, subsampling_x, index, scaling, scaling_shift, bit_depth, min_value,
-                             max_value);
+    BlendChromaScalar(
+        src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
+        [&](int merged_index, int nz) { return MulQ15(scaling_q15[merged_index], nz); }, bit_depth, min_value,
+        max_value);
 }
 
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
@@ -343,25 +335,30 @@ HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
 
-void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* noise, int width, const uint8_t* scaling,
-                       int scaling_shift, int min_value, int max_value) {
+void scaling_q15_table(const ScalingLookup& scaling, int scaling_shift, std::vector<int16_t>& out) {
+    out.resize(std::size_t(1) << scaling.bit_depth());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = int16_t(scaling(int(i)) << (15 - scaling_shift));
+}
+
+void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                       const uint8_t* scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
 }
-void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* noise, int width, const int32_t* scaling,
-                        int scaling_shift, int min_value, int max_value) {
-    HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                        const int16_t* scaling_q15, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling_q15, min_value, max_value);
 }
-void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const int16_t* noise,
-                         int width, int subsampling_x, const ChromaScalingIndex& index, const uint8_t* scaling,
-                         int scaling_shift, int bit_depth, int min_value, int max_value) {
+void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                         const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                         const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendChromaRowU8)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
                                            scaling_shift, bit_depth, min_value, max_value);
 }
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                          const int16_t* noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const int32_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
-    HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
-                                            scaling_shift, bit_depth, min_value, max_value);
+                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                          const int16_t* scaling_q15, int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index,
+                                            scaling_q15, bit_depth, min_value, max_value);
 }
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax) {
