@@ -157,6 +157,66 @@ HWY_INLINE void ChromaScalingIndices(const Pixel* src, const Pixel* luma, int x,
     }
 }
 
+// ChromaScalingIndices in 16-bit lanes, twice as many per vector: the co-sited luma
+// averaged with AverageRound, and luma * luma_mult + chroma * mult as one multiply-add of
+// interleaved (luma, chroma) pairs into int32, whose >> 6 fits 16 bits again. The pairs of
+// the lower and upper lanes of each 128-bit block and the narrowing pack then restore the
+// lane order. Needs at least 8 lanes (every x86 target but the scalar one).
+#if HWY_TARGET != HWY_SCALAR
+#define FILMGRAIN_CHROMA_INDICES ChromaScalingIndices16
+template <typename Pixel, typename Out>
+HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int x, int count, int subsampling_x,
+                                       const ChromaScalingIndex& index, int bit_depth, Out* out) {
+    const D16 d16;
+    const hn::RebindToUnsigned<D16> du16;
+    const hn::Repartition<int32_t, D16> d32;
+    const hn::Repartition<uint32_t, D16> du32;
+    const int n = int(hn::Lanes(d16));
+    const auto mults = hn::BitCast(d16, hn::Set(du32, uint32_t(uint16_t(index.luma_mult)) |
+                                                          uint32_t(uint16_t(index.mult)) << 16));
+    const auto offset = hn::Set(d16, int16_t(index.offset * (1 << (bit_depth - 8))));
+    const auto pixel_max = hn::Set(d16, int16_t((1 << bit_depth) - 1));
+    for (int k = 0; k < count; k += n) {
+        const int cx = x + k;
+        hn::Vec<decltype(du16)> avg;
+        if (!subsampling_x) {
+            if constexpr (sizeof(Pixel) == 1)
+                avg = hn::PromoteTo(du16, hn::LoadU(hn::Rebind<uint8_t, D16>(), luma + cx));
+            else
+                avg = hn::LoadU(du16, luma + cx);
+        } else if constexpr (sizeof(Pixel) == 1) {
+            const auto pairs = hn::LoadU(du16, reinterpret_cast<const uint16_t*>(luma + 2 * cx));
+            avg = hn::AverageRound(hn::And(pairs, hn::Set(du16, uint16_t(0xFF))), hn::ShiftRight<8>(pairs));
+        } else {
+            const auto a = hn::LoadU(du16, luma + 2 * cx), b = hn::LoadU(du16, luma + 2 * cx + n);
+            avg = hn::AverageRound(hn::ConcatEven(du16, b, a), hn::ConcatOdd(du16, b, a));
+        }
+        auto m = hn::BitCast(d16, avg);
+        if (!index.from_luma) {
+            hn::Vec<D16> orig;
+            if constexpr (sizeof(Pixel) == 1)
+                orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(hn::Rebind<uint8_t, D16>(), src + cx)));
+            else
+                orig = hn::BitCast(d16, hn::LoadU(du16, src + cx));
+            auto sum1 = hn::Zero(d32);
+            auto lo = hn::ReorderWidenMulAccumulate(d32, hn::InterleaveLower(d16, m, orig), mults, hn::Zero(d32), sum1);
+            lo = hn::RearrangeToOddPlusEven(lo, sum1);
+            auto sum1h = hn::Zero(d32);
+            auto hi = hn::ReorderWidenMulAccumulate(d32, hn::InterleaveUpper(d16, m, orig), mults, hn::Zero(d32), sum1h);
+            hi = hn::RearrangeToOddPlusEven(hi, sum1h);
+            m = hn::ReorderDemote2To(d16, hn::ShiftRight<6>(lo), hn::ShiftRight<6>(hi));
+            m = hn::Min(hn::Max(hn::Add(m, offset), hn::Zero(d16)), pixel_max);
+        }
+        if constexpr (sizeof(Out) == 1)
+            hn::Store(hn::DemoteTo(hn::Rebind<uint8_t, D16>(), m), hn::Rebind<uint8_t, D16>(), out + k);
+        else
+            hn::Store(m, d16, out + k);
+    }
+}
+#else
+#define FILMGRAIN_CHROMA_INDICES ChromaScalingIndices
+#endif
+
 // The samples the vector loops leave, one by one (AV1 7.18.3.5); scaled(merged, noise) is
 // Round2(scale_lut(merged) * noise, shift).
 template <typename Pixel, class Scaled>
@@ -240,6 +300,22 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise
     }
 }
 
+// Scalar look-ups of a table of 1 << bit_depth q15 scales into a buffer. The empty asm keeps
+// the compiler from turning the loop into an emulated gather (lane inserts), which measured
+// slower than plain loads and stores, as did AVX2 gathers.
+template <typename Index>
+HWY_INLINE void LookUpScalesQ15(const Index* index, int16_t* out, int count, const int16_t* table) {
+    int k = 0;
+    for (; k + 4 <= count; k += 4) {
+        const uint64_t v = uint64_t(uint16_t(table[index[k]])) | uint64_t(uint16_t(table[index[k + 1]])) << 16 |
+                           uint64_t(uint16_t(table[index[k + 2]])) << 32 |
+                           uint64_t(uint16_t(table[index[k + 3]])) << 48;
+        std::memcpy(out + k, &v, sizeof v);
+        asm("");
+    }
+    for (; k < count; ++k) out[k] = table[index[k]];
+}
+
 // Above 8 bits the 1 << bit_depth entry table is looked up with scalar loads into a small
 // buffer: on the CPUs measured that beats vector gathers.
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
@@ -249,7 +325,7 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
     HWY_ALIGN int16_t scale[kChunk];
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        for (int k = 0; k < chunk; ++k) scale[k] = scaling_q15[src[x + k]];
+        LookUpScalesQ15(src + x, scale, chunk, scaling_q15);
         AddBlockNoise(src, dst, noise, x, chunk, Q15Scales(scale), min_value, max_value);
     }
     for (int x = vec_end; x < width; ++x) {
@@ -274,7 +350,7 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
     HWY_ALIGN uint8_t scale[kChunk];
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        ChromaScalingIndices(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
+        FILMGRAIN_CHROMA_INDICES(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
         LookUpScaling8(merged, scale, chunk, scaling);
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
@@ -288,12 +364,12 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                        const int16_t* scaling_q15, int bit_depth, int min_value, int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
-    HWY_ALIGN int32_t merged[kChunk];
+    HWY_ALIGN int16_t merged[kChunk];
     HWY_ALIGN int16_t scale[kChunk];
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        ChromaScalingIndices(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
-        for (int k = 0; k < chunk; ++k) scale[k] = scaling_q15[merged[k]];
+        FILMGRAIN_CHROMA_INDICES(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
+        LookUpScalesQ15(merged, scale, chunk, scaling_q15);
         AddBlockNoise(src, dst, noise, x, chunk, Q15Scales(scale), min_value, max_value);
     }
     BlendChromaScalar(
