@@ -2,6 +2,7 @@
 // every vector target this CPU runs (each forced in turn through simd::force_target):
 // random parameters, sizes, strides (negative too) and bit depths, kernel by kernel and
 // for whole frames of both models. Any difference is reported with its position.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -250,8 +251,19 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
         auto run = [&](auto zero) {
             using Pixel = decltype(zero);
             std::vector<Pixel> src(static_cast<std::size_t>(width)), luma(static_cast<std::size_t>(luma_width)), want(src.size()), got(src.size());
-            for (auto& s : src) s = Pixel(uniform(0, (1 << bd) - 1));
-            for (auto& s : luma) s = Pixel(uniform(0, (1 << bd) - 1));
+            // Uniform samples, or smooth ones (a level wandering by small steps), which the
+            // 8-bit look-up serves from three LUT rows instead of all sixteen.
+            const bool smooth = uniform(0, 1);
+            auto fill = [&](std::vector<Pixel>& v) {
+                int level = uniform(0, (1 << bd) - 1);
+                for (auto& s : v) {
+                    if (smooth)
+                        level = std::clamp(level + uniform(-(2 << (bd - 8)), 2 << (bd - 8)), 0, (1 << bd) - 1);
+                    s = Pixel(smooth ? level : uniform(0, (1 << bd) - 1));
+                }
+            };
+            fill(src);
+            fill(luma);
             av1::blend_luma_row<Pixel>(src.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
                                        clip.min_value, clip.max_luma);
             if constexpr (sizeof(Pixel) == 1)
