@@ -20,67 +20,48 @@ using D16 = hn::CappedTag<int16_t, 16>;
 using D32 = hn::CappedTag<int32_t, 8>;  // as many lanes as D16 has, or half
 constexpr int kChunk = 256;             // samples looked up at once
 
-// Walks a row's block noise vector by vector (lane counts divide the block width).
-class BlockNoiseCursor {
-public:
-    BlockNoiseCursor(const BlockNoiseRow& row, int x) : row_(row) {
-        b_ = x / row.block_width;
-        k_ = x - b_ * row.block_width;
-        const D16 d16;
-        const hn::Repartition<uint32_t, D16> d32;
-        auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
-        w_old_ = hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1])));
-        w_new_ = hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1])));
-    }
-    // The noise of the next Lanes(d) samples.
-    HWY_INLINE hn::Vec<D16> Next(D16 d16) {
-        const int n = int(hn::Lanes(d16));
-        const hn::Repartition<uint32_t, D16> d32;
-        const int16_t* own = row_.blocks[b_];
-        auto v = hn::LoadU(d16, own + k_);
-        if (k_ < 2 && (row_.seams || (row_.fade && b_ > 0))) {
-            if (n < 2) {
-                v = hn::Set(d16, row_.at(b_ * row_.block_width + k_));
-            } else if (row_.seams) {
-                v = hn::IfThenElse(hn::FirstN(d16, 2), hn::BitCast(d16, hn::Set(d32, row_.seams[b_])), v);
-            } else {
-                // Horizontal overlap with the left block (7.18.3.5), in every lane, kept in the first two.
-                uint32_t left_pair;
-                std::memcpy(&left_pair, row_.blocks[b_ - 1] + row_.block_width, sizeof left_pair);
-                const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
-                const auto sum = hn::Add(hn::Add(hn::Mul(left, w_old_), hn::Mul(v, w_new_)), hn::Set(d16, 16));
-                const auto faded =
-                    hn::Min(hn::Max(hn::ShiftRight<5>(sum), hn::Set(d16, row_.gmin)), hn::Set(d16, row_.gmax));
-                v = hn::IfThenElse(hn::FirstN(d16, 2), faded, v);
-            }
-        }
-        k_ += n;
-        if (k_ == row_.block_width) {
-            k_ = 0;
-            ++b_;
-        }
-        return v;
-    }
-
-private:
-    const BlockNoiseRow& row_;
-    int b_, k_;
-    hn::Vec<D16> w_old_, w_new_;
+// Constants of the horizontal overlap fade, made once per row.
+struct FadeConstants {
+    hn::Vec<D16> w_old, w_new, gmin, gmax;
 };
 
-// dst = clip(src + Round2(scale * noise, shift)) for `count` samples from x (a multiple of
-// the lane count), the scales read by `scale_at(k)` as pre-shifted q15 int16 lanes.
+// The first vector of block b's noise: its first two lanes replaced by the horizontal overlap
+// with the left block (7.18.3.5), given as seams or faded here. At least two lanes.
+HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own,
+                                          const FadeConstants& c) {
+    const hn::Repartition<uint32_t, D16> d32;
+    if (row.seams) return hn::IfThenElse(hn::FirstN(d16, 2), hn::BitCast(d16, hn::Set(d32, row.seams[b])), own);
+    if (!row.fade || b == 0) return own;
+    uint32_t left_pair;
+    std::memcpy(&left_pair, row.blocks[b - 1] + row.block_width, sizeof left_pair);
+    const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
+    const auto sum = hn::Add(hn::Add(hn::Mul(left, c.w_old), hn::Mul(own, c.w_new)), hn::Set(d16, 16));
+    return hn::IfThenElse(hn::FirstN(d16, 2), hn::Min(hn::Max(hn::ShiftRight<5>(sum), c.gmin), c.gmax), own);
+}
+
+// dst = clip(src + Round2(scale * noise, shift)) for `count` samples from x (x a multiple
+// of the block width, count of the lane count), the scales read by `scale_at(k)` as
+// pre-shifted q15 int16 lanes. Block by block, so that only a block's first vector looks
+// at the overlap.
 template <typename Pixel, class ScaleAt>
-HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow& row, int x, int count,
+HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow& noise_row, int x, int count,
                               ScaleAt scale_at, int min_value, int max_value) {
     const D16 d16;
     const hn::Rebind<Pixel, D16> dp;
     const hn::RebindToUnsigned<D16> du16;
+    const hn::Repartition<uint32_t, D16> d32;
     const int n = int(hn::Lanes(d16));
+    // A local copy: byte stores to dst could alias the caller's struct, which would make the
+    // compiler reload its members after every store.
+    const BlockNoiseRow row = noise_row;
     const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
-    BlockNoiseCursor noise(row, x);
-    for (int k = 0; k < count; k += n) {
-        const auto add = hn::MulFixedPoint15(scale_at(k), noise.Next(d16));
+    auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
+    const FadeConstants fade{hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1]))),
+                             hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))),
+                             hn::Set(d16, row.gmin), hn::Set(d16, row.gmax)};
+    const bool overlapped = row.seams || row.fade;
+    auto blend = [&](int k, hn::Vec<D16> noise) {
+        const auto add = hn::MulFixedPoint15(scale_at(k), noise);
         hn::Vec<D16> orig;
         if constexpr (sizeof(Pixel) == 1)
             orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
@@ -91,6 +72,21 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
             hn::StoreU(hn::DemoteTo(dp, v), dp, dst + x + k);
         else
             hn::StoreU(hn::BitCast(dp, v), dp, dst + x + k);
+    };
+    const int bw = row.block_width;
+    for (int k = 0, b = x / bw; k < count; k += bw, ++b) {
+        const int16_t* own = row.blocks[b];
+        const int in_block = std::min(bw, count - k);
+        int j = 0;
+        if (overlapped) {
+            if (n >= 2) {
+                blend(k, FirstNoiseOfBlock(d16, row, b, hn::LoadU(d16, own), fade));
+                j = n;
+            } else {
+                for (; j < 2 && j < in_block; ++j) blend(k + j, hn::Set(d16, row.at(x + k + j)));
+            }
+        }
+        for (; j < in_block; j += n) blend(k + j, hn::LoadU(d16, own + j));
     }
 }
 
