@@ -76,10 +76,6 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
     }
     chroma_index_[1] = {p.chroma_scaling_from_luma != 0, p.cb_mult - 128, p.cb_luma_mult - 128, p.cb_offset - 256};
     chroma_index_[2] = {p.chroma_scaling_from_luma != 0, p.cr_mult - 128, p.cr_luma_mult - 128, p.cr_offset - 256};
-    // Above 8 bits the optimized blends take the scaling function as q15 int16 (av1_kernels.hpp).
-    if (bit_depth > 8)
-        for (int pl = 0; pl < 3; ++pl)
-            if (has_grain_[pl]) simd::scaling_q15_table(scaling_[pl], p.grain_scaling_minus_8 + 8, scaling_q15_[pl]);
 }
 
 void StripeScratch::reserve(int luma_width) {
@@ -228,8 +224,8 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
             else
                 simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_q15_[pl].data(),
-                                           bit_depth_, clip_.min_value, clip_.max_chroma);
+                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl].table8().data(),
+                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
         });
     }
 
@@ -245,8 +241,8 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(),
                                     scaling_shift, clip_.min_value, clip_.max_luma);
         else
-            simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_q15_[0].data(),
-                                     clip_.min_value, clip_.max_luma);
+            simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(),
+                                     scaling_shift, bit_depth_, clip_.min_value, clip_.max_luma);
     });
 }
 
@@ -326,7 +322,7 @@ std::size_t Av1Synthesizer::working_bytes() const {
 std::size_t Av1SynthesisContext::table_bytes() const {
     std::size_t n = 0;
     for (int pl = 0; pl < 3; ++pl)
-        n += templates_[pl].samples.capacity() * sizeof(int16_t) + scaling_q15_[pl].capacity() * sizeof(int16_t) +
+        n += templates_[pl].samples.capacity() * sizeof(int16_t) +
              scaling_[pl].table8().capacity() + (std::size_t(1) << bit_depth_);
     return n;
 }

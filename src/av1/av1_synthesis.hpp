@@ -88,7 +88,6 @@ private:
     ScalingLookup scaling_[3];  // [1], [2] alias luma's function with chroma_scaling_from_luma
     bool has_grain_[3] = {false, false, false};
     ChromaScalingIndex chroma_index_[3];
-    std::vector<int16_t> scaling_q15_[3];  // above 8 bits: scaling_[pl] as the optimized blends take it
 };
 
 // Checks that a view is usable for the given format/bit depth/size (throws

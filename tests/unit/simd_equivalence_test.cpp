@@ -242,8 +242,6 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
         const int luma_width = subx ? width * 2 - uniform(0, 1) : width;
         const av1::ScalingLookup scaling = random_scaling(rng, bd);
         const int shift = uniform(8, 11);
-        std::vector<int16_t> q15;
-        av1::simd::scaling_q15_table(scaling, shift, q15);
         const av1::ClipLimits clip = av1::clip_limits(uniform(0, 1), bd, uniform(0, 2));
         const RandomBlockNoise luma_noise(width, 32, bd, rng);
         const RandomBlockNoise chroma_noise(width, 32 >> subx, bd, rng);
@@ -270,8 +268,8 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
                 av1::simd::blend_luma_row_u8(src.data(), got.data(), luma_noise.row, width, scaling.table8().data(),
                                              shift, clip.min_value, clip.max_luma);
             else
-                av1::simd::blend_luma_row_u16(src.data(), got.data(), luma_noise.row, width, q15.data(),
-                                              clip.min_value, clip.max_luma);
+                av1::simd::blend_luma_row_u16(src.data(), got.data(), luma_noise.row, width,
+                                              scaling.table8().data(), shift, bd, clip.min_value, clip.max_luma);
             ASSERT_EQ(got, want) << "luma, iteration " << iter << " bd " << bd << " width " << width;
             av1::blend_chroma_row<Pixel>(src.data(), want.data(), luma.data(), luma_width, chroma_noise.flat.data(),
                                          width, subx, index, scaling, shift, bd, clip.min_value, clip.max_chroma);
@@ -281,8 +279,8 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
                                                clip.min_value, clip.max_chroma);
             else
                 av1::simd::blend_chroma_row_u16(src.data(), got.data(), luma.data(), luma_width, chroma_noise.row,
-                                                width, subx, index, q15.data(), bd, clip.min_value,
-                                                clip.max_chroma);
+                                                width, subx, index, scaling.table8().data(), shift, bd,
+                                                clip.min_value, clip.max_chroma);
             ASSERT_EQ(got, want) << "chroma, iteration " << iter << " bd " << bd << " width " << width << " subx "
                                  << subx << " luma width " << luma_width;
             // in place, as the synthesizer runs on a decoder's picture
@@ -291,8 +289,8 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
                 av1::simd::blend_luma_row_u8(in_place.data(), in_place.data(), luma_noise.row, width,
                                              scaling.table8().data(), shift, clip.min_value, clip.max_luma);
             else
-                av1::simd::blend_luma_row_u16(in_place.data(), in_place.data(), luma_noise.row, width, q15.data(),
-                                              clip.min_value, clip.max_luma);
+                av1::simd::blend_luma_row_u16(in_place.data(), in_place.data(), luma_noise.row, width,
+                                              scaling.table8().data(), shift, bd, clip.min_value, clip.max_luma);
             av1::blend_luma_row<Pixel>(src.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
                                        clip.min_value, clip.max_luma);
             ASSERT_EQ(in_place, want) << "luma in place, iteration " << iter;

@@ -100,13 +100,6 @@ HWY_INLINE auto ByteScalesQ15(const uint8_t* scale, int up_shift) {
     };
 }
 
-HWY_INLINE auto Q15Scales(const int16_t* scale) {
-    return [scale](int k) { return hn::Load(D16(), scale + k); };
-}
-
-// Round2(scale * noise, shift) from a q15 scale, as pmulhrsw rounds it.
-HWY_INLINE int MulQ15(int scale_q15, int noise) { return (scale_q15 * noise + (1 << 14)) >> 15; }
-
 // Luma co-sited with chroma lanes [x, x + n): the average of each horizontal pair when
 // subsampled. Pairs are read as one wider lane and split, which needs no shuffles.
 template <typename Pixel>
@@ -248,18 +241,23 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // two neighbouring 16-entry rows of the LUT, the XOR over those steps leaves the wanted row.
 // The indices from 128 up take a second chain on index - 128. Three vector operations per
 // 16 entries and no per-step constants replace a scalar load and store per sample.
-HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const uint8_t* table) {
+// kTables tables looked up at the same indices (the 8-bit LUT alone, or above 8 bits the
+// LUT and its successor row for the interpolation), sharing the index arithmetic.
+template <int kTables>
+HWY_INLINE void LookUpBytes(const uint8_t* index, int count, const uint8_t* const (&tables)[kTables],
+                            uint8_t* const (&outs)[kTables]) {
     const hn::ScalableTag<uint8_t> du8;
     const int n = int(hn::Lanes(du8));
     int k = 0;
     // Byte shuffles need whole 16-byte blocks: a one-lane (scalar) target loads instead.
     if (n >= 16 && count >= n) {
         using V = hn::Vec<decltype(du8)>;
-        V rows[16];
-        for (int j = 0; j < 16; ++j) {
-            rows[j] = hn::LoadDup128(du8, table + 16 * j);
-            if (j % 8 != 7) rows[j] = hn::Xor(rows[j], hn::LoadDup128(du8, table + 16 * (j + 1)));
-        }
+        V rows[kTables][16];
+        for (int t = 0; t < kTables; ++t)
+            for (int j = 0; j < 16; ++j) {
+                rows[t][j] = hn::LoadDup128(du8, tables[t] + 16 * j);
+                if (j % 8 != 7) rows[t][j] = hn::Xor(rows[t][j], hn::LoadDup128(du8, tables[t] + 16 * (j + 1)));
+            }
         const auto step = hn::Set(du8, uint8_t(16)), top = hn::Set(du8, uint8_t(0x80));
         const auto one = hn::Set(du8, uint8_t(1)), two = hn::Set(du8, uint8_t(2)), low_mask = hn::Set(du8, uint8_t(15));
         for (; k + n <= count; k += n) {
@@ -271,27 +269,96 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
             const auto rel = hn::Sub(hn::ShiftRight<4>(lo), hn::Set(du8, uint8_t(h0 - 1)));  // wraps below 0
             if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel, two), hn::Zero(du8)))) {
                 const auto low = hn::And(lo, low_mask);
-                const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * std::max(h0 - 1, 0)), low);
-                const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * h0), low);
-                const auto above = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * std::min(h0 + 1, 15)), low);
-                const auto r = hn::IfThenElse(hn::Eq(rel, one), same, below);
-                hn::StoreU(hn::IfThenElse(hn::Eq(rel, two), above, r), du8, out + k);
+                const auto is_same = hn::Eq(rel, one), is_above = hn::Eq(rel, two);
+                for (int t = 0; t < kTables; ++t) {
+                    const uint8_t* table = tables[t];
+                    const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * std::max(h0 - 1, 0)), low);
+                    const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * h0), low);
+                    const auto above =
+                        hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * std::min(h0 + 1, 15)), low);
+                    hn::StoreU(hn::IfThenElse(is_above, above, hn::IfThenElse(is_same, same, below)), du8,
+                               outs[t] + k);
+                }
                 continue;
             }
             auto hi = hn::Xor(lo, top);
-            auto r_lo = hn::TableLookupBytesOr0(rows[7], lo);
-            auto r_hi = hn::TableLookupBytesOr0(rows[15], hi);
+            V r_lo[kTables], r_hi[kTables];
+            for (int t = 0; t < kTables; ++t) {
+                r_lo[t] = hn::TableLookupBytesOr0(rows[t][7], lo);
+                r_hi[t] = hn::TableLookupBytesOr0(rows[t][15], hi);
+            }
             for (int j = 6; j >= 0; --j) {
                 lo = hn::SaturatedAdd(lo, step);
                 hi = hn::SaturatedAdd(hi, step);
-                r_lo = hn::Xor(r_lo, hn::TableLookupBytesOr0(rows[j], lo));
-                r_hi = hn::Xor(r_hi, hn::TableLookupBytesOr0(rows[8 + j], hi));
+                for (int t = 0; t < kTables; ++t) {
+                    r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(rows[t][j], lo));
+                    r_hi[t] = hn::Xor(r_hi[t], hn::TableLookupBytesOr0(rows[t][8 + j], hi));
+                }
             }
-            hn::StoreU(hn::Xor(r_lo, r_hi), du8, out + k);
+            for (int t = 0; t < kTables; ++t) hn::StoreU(hn::Xor(r_lo[t], r_hi[t]), du8, outs[t] + k);
         }
     }
-    for (; k < count; ++k) out[k] = table[index[k]];
+    for (; k < count; ++k)
+        for (int t = 0; t < kTables; ++t) outs[t][k] = tables[t][index[k]];
 }
+
+HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const uint8_t* table) {
+    const uint8_t* const tables[1] = {table};
+    uint8_t* const outs[1] = {out};
+    LookUpBytes<1>(index, count, tables, outs);
+}
+
+// Above 8 bits scale_lut interpolates the 8-bit LUT (7.18.3.5): s + (((e - s) * rem +
+// round) >> shift) with s = LUT[i >> shift], e = LUT[(i >> shift) + 1] (LUT[255] past the
+// end), shift = bit_depth - 8 and rem the low bits of i. s and e are byte-shuffle look-ups
+// as at 8 bits (cheaper than a scalar load per sample from a 1 << bit_depth table), the
+// interpolation is done in 16-bit lanes, and the result is shifted up to q15.
+class InterpolatedScales {
+public:
+    InterpolatedScales(const uint8_t* lut, int bit_depth, int scaling_shift)
+        : lut_(lut), bd_shift_(bit_depth - 8), up_shift_(15 - scaling_shift) {
+        std::memcpy(next_, lut + 1, 255);
+        next_[255] = lut[255];
+    }
+    // Looks up `count` indices (a multiple of the 16-bit lane count); then At(k) gives the
+    // q15 scales of lanes [k, k + Lanes).
+    template <typename Index>
+    HWY_INLINE void LookUp(const Index* index, int count) {
+        const D16 d16;
+        const hn::Rebind<uint8_t, D16> d8;
+        const int n = int(hn::Lanes(d16));
+        index_ = reinterpret_cast<const int16_t*>(index);
+        for (int k = 0; k < count; k += n)
+            hn::Store(hn::DemoteTo(d8, hn::ShiftRightSame(hn::LoadU(d16, index_ + k), bd_shift_)), d8, top_ + k);
+        const uint8_t* const tables[2] = {lut_, next_};
+        uint8_t* const outs[2] = {start_, end_};
+        LookUpBytes<2>(top_, count, tables, outs);
+    }
+    HWY_INLINE hn::Vec<D16> At(int k) const {
+        const D16 d16;
+        const hn::Rebind<uint8_t, D16> d8;
+        const hn::RebindToUnsigned<D16> du16;
+        const auto s = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, start_ + k)));
+        const auto e = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, end_ + k)));
+        const auto rem = hn::And(hn::LoadU(d16, index_ + k), hn::Set(d16, int16_t((1 << bd_shift_) - 1)));
+        const auto step = hn::Add(hn::Mul(hn::Sub(e, s), rem), hn::Set(d16, int16_t(1 << (bd_shift_ - 1))));
+        return hn::ShiftLeftSame(hn::Add(s, hn::ShiftRightSame(step, bd_shift_)), up_shift_);
+    }
+    // scale_lut(i), one sample.
+    int Scalar(int i) const {
+        const int x = i >> bd_shift_, rem = i & ((1 << bd_shift_) - 1);
+        return lut_[x] + (((next_[x] - lut_[x]) * rem + (1 << (bd_shift_ - 1))) >> bd_shift_);
+    }
+
+private:
+    const uint8_t* lut_;
+    int bd_shift_, up_shift_;
+    const int16_t* index_ = nullptr;
+    HWY_ALIGN uint8_t next_[256];
+    HWY_ALIGN uint8_t top_[kChunk];
+    HWY_ALIGN uint8_t start_[kChunk];
+    HWY_ALIGN uint8_t end_[kChunk];
+};
 
 // 8 bits: scale * noise in 16-bit lanes (255 * 128 fits), rounded by pmulhrsw with the
 // scale shifted up to q15.
@@ -311,36 +378,19 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise
     }
 }
 
-// Scalar look-ups of a table of 1 << bit_depth q15 scales into a buffer. The empty asm keeps
-// the compiler from turning the loop into an emulated gather (lane inserts), which measured
-// slower than plain loads and stores, as did AVX2 gathers.
-template <typename Index>
-HWY_INLINE void LookUpScalesQ15(const Index* index, int16_t* out, int count, const int16_t* table) {
-    int k = 0;
-    for (; k + 4 <= count; k += 4) {
-        const uint64_t v = uint64_t(uint16_t(table[index[k]])) | uint64_t(uint16_t(table[index[k + 1]])) << 16 |
-                           uint64_t(uint16_t(table[index[k + 2]])) << 32 |
-                           uint64_t(uint16_t(table[index[k + 3]])) << 48;
-        std::memcpy(out + k, &v, sizeof v);
-        asm("");
-    }
-    for (; k < count; ++k) out[k] = table[index[k]];
-}
-
-// Above 8 bits the 1 << bit_depth entry table is looked up with scalar loads into a small
-// buffer: on the CPUs measured that beats vector gathers.
+// Above 8 bits the 16-bit lanes hold the samples themselves.
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                     const int16_t* scaling_q15, int min_value, int max_value) {
+                     const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
-    HWY_ALIGN int16_t scale[kChunk];
+    InterpolatedScales scales(scaling, bit_depth, scaling_shift);
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        LookUpScalesQ15(src + x, scale, chunk, scaling_q15);
-        AddBlockNoise(src, dst, noise, x, chunk, Q15Scales(scale), min_value, max_value);
+        scales.LookUp(src + x, chunk);
+        AddBlockNoise(src, dst, noise, x, chunk, [&](int k) { return scales.At(k); }, min_value, max_value);
     }
     for (int x = vec_end; x < width; ++x) {
-        const int v = src[x] + MulQ15(scaling_q15[src[x]], noise.at(x));
+        const int v = src[x] + round2_signed(scales.Scalar(src[x]) * noise.at(x), scaling_shift);
         dst[x] = static_cast<uint16_t>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
 }
@@ -373,20 +423,20 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
 
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                       const int16_t* scaling_q15, int bit_depth, int min_value, int max_value) {
+                       const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN int16_t merged[kChunk];
-    HWY_ALIGN int16_t scale[kChunk];
+    InterpolatedScales scales(scaling, bit_depth, scaling_shift);
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         FILMGRAIN_CHROMA_INDICES(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
-        LookUpScalesQ15(merged, scale, chunk, scaling_q15);
-        AddBlockNoise(src, dst, noise, x, chunk, Q15Scales(scale), min_value, max_value);
+        scales.LookUp(merged, chunk);
+        AddBlockNoise(src, dst, noise, x, chunk, [&](int k) { return scales.At(k); }, min_value, max_value);
     }
     BlendChromaScalar(
         src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
-        [&](int merged_index, int nz) { return MulQ15(scaling_q15[merged_index], nz); }, bit_depth, min_value,
-        max_value);
+        [&](int merged_index, int nz) { return round2_signed(scales.Scalar(merged_index) * nz, scaling_shift); },
+        bit_depth, min_value, max_value);
 }
 
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
@@ -422,18 +472,14 @@ HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
 
-void scaling_q15_table(const ScalingLookup& scaling, int scaling_shift, std::vector<int16_t>& out) {
-    out.resize(std::size_t(1) << scaling.bit_depth());
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = int16_t(scaling(int(i)) << (15 - scaling_shift));
-}
-
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const uint8_t* scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
 }
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                        const int16_t* scaling_q15, int min_value, int max_value) {
-    HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling_q15, min_value, max_value);
+                        const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value,
+                                          max_value);
 }
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
@@ -443,9 +489,9 @@ void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, 
 }
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const int16_t* scaling_q15, int bit_depth, int min_value, int max_value) {
-    HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index,
-                                            scaling_q15, bit_depth, min_value, max_value);
+                          const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
+                                            scaling_shift, bit_depth, min_value, max_value);
 }
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax) {
