@@ -91,7 +91,10 @@ int run_decode(const DecodeOptions& o) {
     libav::DecodedFrame frame;
     int64_t n = 0, with_grain = 0;
     Progress progress(!o.quiet && o.output != "-" && isatty(STDERR_FILENO), d.frames_estimate);
-    while (decoder.next(frame)) {
+    // Pictures are not copied out of the decoder first: the synthesis writes its output
+    // straight from the decoder's picture (as dav1d does), only pictures without grain are
+    // copied.
+    while (decoder.next(frame, /*copy_picture=*/false)) {
         if (!writer) {
             info.width = frame.picture.width();
             info.height = frame.picture.height();
@@ -108,23 +111,24 @@ int run_decode(const DecodeOptions& o) {
                                                      std::to_string(frame.picture.height()) + "), which " +
                                                      (y4m ? "Y4M" : "a raw YUV file") + " cannot hold");
         }
-        const FrameView v = frame.picture.view();
-        if (o.no_grain) {
+        const FrameView src = frame.decoded, v = frame.picture.view();
+        if (o.no_grain || (!frame.av1 && !frame.fgc)) {
             // the decoder's output as it is: the clean pictures grain is added to
+            copy_frame(src, v);
         } else if (frame.av1) {
             if (!av1_synth) av1_synth = std::make_unique<av1::Av1Synthesizer>(o.threads);
-            av1_synth->apply(*frame.av1, v, v, frame.matrix_coefficients);
+            av1_synth->apply(*frame.av1, src, v, frame.matrix_coefficients);
             with_grain++;
-        } else if (frame.fgc) {
+        } else {
             if (flavour == FgcFlavour::kVfgs) {
                 if (!vfgs_synth) vfgs_synth = std::make_unique<vfgs::Synthesizer>(vfgs::Options{});
                 vfgs_synth->set_params(*frame.fgc);
-                vfgs_synth->apply(v, v);
+                vfgs_synth->apply(src, v);
             } else {
                 if (!fgc) fgc = std::make_unique<FgcSynthesizer>(fo);
                 fgc->receive_sei(*frame.fgc, frame.fgc_codec);
                 const FgcPictureIds ids{int(frame.seed), 0};
-                fgc->apply(v, v, ids);
+                fgc->apply(src, v, ids);
             }
             with_grain++;
         }

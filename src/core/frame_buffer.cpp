@@ -1,5 +1,7 @@
 #include "core/frame_buffer.hpp"
 
+#include <cstring>
+
 #include "filmgrain/error.hpp"
 
 namespace filmgrain {
@@ -73,6 +75,14 @@ FrameView FrameBuffer::view() {
         v.planes[p].stride = std::ptrdiff_t(v.planes[p].width) * bps;
     }
     return v;
+}
+
+void copy_frame(const FrameView& src, const FrameView& dst) {
+    for (int p = 0; p < src.plane_count(); p++) {
+        const std::size_t row_bytes = std::size_t(plane_width(src.format, p, src.width)) * src.bytes_per_sample();
+        for (int y = 0; y < plane_height(src.format, p, src.height); y++)
+            std::memcpy(dst.planes[p].row<uint8_t>(y), src.planes[p].row<const uint8_t>(y), row_bytes);
+    }
 }
 
 }  // namespace filmgrain

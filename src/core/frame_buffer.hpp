@@ -44,4 +44,7 @@ private:
     std::size_t offsets_[3] = {0, 0, 0};
 };
 
+// Copies every plane of src into dst (same format and size, any strides).
+void copy_frame(const FrameView& src, const FrameView& dst);
+
 }  // namespace filmgrain

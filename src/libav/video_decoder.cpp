@@ -113,7 +113,7 @@ VideoDecoder::VideoDecoder(const std::string& path, int threads) : s_(std::make_
 
 VideoDecoder::~VideoDecoder() = default;
 
-bool VideoDecoder::next(DecodedFrame& out) {
+bool VideoDecoder::next(DecodedFrame& out, bool copy_picture) {
     State& s = *s_;
     for (;;) {
         if (s.done) return false;
@@ -152,14 +152,19 @@ bool VideoDecoder::next(DecodedFrame& out) {
     if (out.picture.width() != f->width || out.picture.height() != f->height || out.picture.format().chroma != pf.chroma ||
         out.picture.format().bit_depth != pf.bit_depth)
         out.picture = FrameBuffer(f->width, f->height, pf);
-    FrameView v = out.picture.view();
-    const int bps = pf.bit_depth > 8 ? 2 : 1;
-    for (int p = 0; p < v.plane_count(); p++) {
-        const PlaneView& dst = v.planes[p];
-        for (int y = 0; y < dst.height; y++)
-            std::memcpy(dst.data + dst.stride * y, f->data[p] + std::ptrdiff_t(f->linesize[p]) * y,
-                        std::size_t(dst.width) * bps);
+    FrameView decoded;
+    decoded.format = pf.chroma;
+    decoded.bit_depth = pf.bit_depth;
+    decoded.width = f->width;
+    decoded.height = f->height;
+    for (int p = 0; p < decoded.plane_count(); p++) {
+        decoded.planes[p].data = f->data[p];
+        decoded.planes[p].stride = f->linesize[p];
+        decoded.planes[p].width = plane_width(pf.chroma, p, f->width);
+        decoded.planes[p].height = plane_height(pf.chroma, p, f->height);
     }
+    out.decoded = decoded;
+    if (copy_picture) copy_frame(decoded, out.picture.view());
     out.av1.reset();
     out.fgc.reset();
     out.seed = 0;
@@ -176,7 +181,8 @@ bool VideoDecoder::next(DecodedFrame& out) {
                                                                          : FgcCodec::kHevc;
         }
     }
-    av_frame_unref(f);
+    // The frame stays referenced until the next call (avcodec_receive_frame unreferences
+    // it first), so that `decoded` stays valid.
     return true;
 }
 

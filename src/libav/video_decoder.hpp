@@ -17,6 +17,11 @@ namespace filmgrain::libav {
 
 struct DecodedFrame {
     FrameBuffer picture;  // cropped, packed planes
+    // The decoder's own picture (its planes, cropped), valid until the next call of next().
+    // `picture` holds a copy of it unless next() was asked not to copy, in which case
+    // `picture` only has the right size and format: a caller that adds grain writes it
+    // there straight from `decoded`, so the synthesis is the copy.
+    FrameView decoded;
     // Exported grain: AV1 parameters (grain_seed from the frame) or an FGC SEI with the
     // seed FFmpeg derived for it (H.265: the picture's POC; H.264: pic_offset =
     // POC + (idr_pic_id << 5), SMPTE RDD 5).
@@ -45,7 +50,7 @@ public:
 
     const StreamDescription& description() const { return desc_; }
     // false at the end of the stream; throws Error on a decoding failure.
-    bool next(DecodedFrame& frame);
+    bool next(DecodedFrame& frame, bool copy_picture = true);
 
 private:
     struct State;
