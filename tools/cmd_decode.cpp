@@ -91,9 +91,9 @@ int run_decode(const DecodeOptions& o) {
     libav::DecodedFrame frame;
     int64_t n = 0, with_grain = 0;
     Progress progress(!o.quiet && o.output != "-" && isatty(STDERR_FILENO), d.frames_estimate);
-    // Pictures are not copied out of the decoder first: the synthesis writes its output
-    // straight from the decoder's picture (as dav1d does), only pictures without grain are
-    // copied.
+    // Pictures are not copied out of the decoder: the synthesis writes its output frame
+    // straight from the decoder's picture (as dav1d does), and pictures without grain are
+    // written from the decoder's picture itself.
     while (decoder.next(frame, /*copy_picture=*/false)) {
         if (!writer) {
             info.width = frame.picture.width();
@@ -114,8 +114,12 @@ int run_decode(const DecodeOptions& o) {
         const FrameView src = frame.decoded, v = frame.picture.view();
         if (o.no_grain || (!frame.av1 && !frame.fgc)) {
             // the decoder's output as it is: the clean pictures grain is added to
-            copy_frame(src, v);
-        } else if (frame.av1) {
+            writer->write(src);
+            n++;
+            progress.frame_done(n);
+            continue;
+        }
+        if (frame.av1) {
             if (!av1_synth) av1_synth = std::make_unique<av1::Av1Synthesizer>(o.threads);
             av1_synth->apply(*frame.av1, src, v, frame.matrix_coefficients);
             with_grain++;

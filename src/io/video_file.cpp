@@ -1,5 +1,7 @@
 #include "io/video_file.hpp"
 
+#include <limits.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <bit>
@@ -185,6 +187,46 @@ void VideoWriter::write(const FrameBuffer& frame) {
         ok = std::fwrite(frame.bytes(), 1, frame.byte_size(), f_) == frame.byte_size();
     }
     if (!ok) throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
+}
+
+void VideoWriter::write(const FrameView& frame) {
+    const int bps = frame.bytes_per_sample();
+    if (std::endian::native == std::endian::big && bps > 1) {
+        FrameBuffer packed(frame.width, frame.height, PixelFormat{frame.format, frame.bit_depth});
+        copy_frame(frame, packed.view());
+        return write(packed);
+    }
+    if (y4m_) std::fwrite("FRAME\n", 1, 6, f_);
+    if (std::fflush(f_) != 0) throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
+    // One gathering write per IOV_MAX rows, straight from the picture's rows.
+    std::vector<iovec> rows;
+    for (int p = 0; p < frame.plane_count(); p++) {
+        const std::size_t row_bytes = std::size_t(plane_width(frame.format, p, frame.width)) * std::size_t(bps);
+        for (int y = 0; y < plane_height(frame.format, p, frame.height); y++)
+            rows.push_back(iovec{frame.planes[p].row<uint8_t>(y), row_bytes});
+    }
+    const int fd = fileno(f_);
+    std::size_t i = 0;
+    while (i < rows.size()) {
+        const int count = int(std::min<std::size_t>(rows.size() - i, IOV_MAX));
+        const ssize_t n = ::writev(fd, rows.data() + i, count);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
+        }
+        // Skip what was written; a partial write leaves the rest of a row for the next call.
+        std::size_t done = std::size_t(n);
+        while (done > 0 && i < rows.size()) {
+            if (done >= rows[i].iov_len) {
+                done -= rows[i].iov_len;
+                i++;
+            } else {
+                rows[i].iov_base = static_cast<uint8_t*>(rows[i].iov_base) + done;
+                rows[i].iov_len -= done;
+                done = 0;
+            }
+        }
+    }
 }
 
 void VideoWriter::commit() {

@@ -45,6 +45,9 @@ public:
     VideoWriter(const std::string& path, const VideoInfo& info, bool y4m);
     ~VideoWriter();
     void write(const FrameBuffer& frame);
+    // The same bytes from a picture with any strides (e.g. a decoder's own), written row
+    // by row without copying it first.
+    void write(const FrameView& frame);
     void commit();
 
 private:
