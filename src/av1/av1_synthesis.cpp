@@ -7,7 +7,7 @@
 
 #include "av1/block_synthesis.hpp"
 #include "av1/grain_template_optimized.hpp"
-#include "av1/noise_stripe_rows.hpp"
+#include "av1/stripe_block_origins.hpp"
 #include "av1/params_validation.hpp"
 #include "av1/simd/av1_kernels.hpp"
 #include "core/thread_pool.hpp"
@@ -158,31 +158,47 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     // rows as build_stripe_noise does.
     auto blend_plane = [&](int pl, int sx, int sy, int rows, auto&& blend_row) {
         const GrainTemplate& tmpl = templates_[pl];
-        stripe_block_origins(tmpl, p_.grain_seed, stripe, width_, sx, sy, scratch.origins.data());
         const int block_w = kBlockSize >> sx;
+        const int pw = plane_width(format_, pl, width_);
         const int shared_rows = overlap && stripe > 0 ? std::min(rows, 2 >> sy) : 0;
-        if (shared_rows) {
-            build_noise_stripe_rows(tmpl, p_.grain_seed, stripe, width_, sx, sy, overlap, bit_depth_, 0, shared_rows,
-                                    scratch.noise.data(), std::ptrdiff_t(pitch));
-            const int stripe_h = kBlockSize >> sy;
-            build_noise_stripe_rows(tmpl, p_.grain_seed, stripe - 1, width_, sx, sy, overlap, bit_depth_, stripe_h,
-                                    stripe_h + shared_rows, scratch.previous.data(), std::ptrdiff_t(pitch));
-            const int pw = plane_width(format_, pl, width_);
-            for (int i = 0; i < shared_rows; ++i) {
-                const int w_old = sy ? 23 : (i == 0 ? 27 : 17), w_new = sy ? 22 : (i == 0 ? 17 : 27);
-                simd::cross_fade_row(scratch.previous.data() + pitch * i, scratch.noise.data() + pitch * i, pw,
-                                     w_old, w_new, gmin, gmax);
-            }
-        }
         simd::BlockNoiseRow row;
         row.blocks = scratch.block_rows.data();
         row.block_width = block_w;
-        // The horizontal overlap is faded inside the blends where 16-bit lanes hold it, else
+        // The horizontal overlap is faded inside the kernels where 16-bit lanes hold it, else
         // precomputed per row (12 bits).
-        const bool fade_in_blend = overlap && bit_depth_ <= 10;
+        const bool fade_in_kernel = overlap && bit_depth_ <= 10;
         row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
         row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
         row.gmin = int16_t(gmin), row.gmax = int16_t(gmax);
+        // Row `i` of the blocks at `origins`, as it reads the template.
+        auto point_at_template_row = [&](const int32_t* origins, int i) {
+            const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
+            for (int b = 0; b < blocks; ++b) scratch.block_rows[std::size_t(b)] = t + origins[b];
+            row.fade = fade_in_kernel;
+            row.seams = nullptr;
+            if (overlap && !fade_in_kernel) {
+                overlap_seams(scratch.block_rows.data(), blocks, sx, bit_depth_, scratch.seams.data());
+                row.seams = scratch.seams.data();
+            }
+        };
+        if (shared_rows) {
+            // The previous stripe's blocks continue below it for the vertical overlap.
+            stripe_block_origins(tmpl, p_.grain_seed, stripe - 1, width_, sx, sy, scratch.origins.data());
+            const int stripe_h = kBlockSize >> sy;
+            for (int i = 0; i < shared_rows; ++i) {
+                point_at_template_row(scratch.origins.data(), stripe_h + i);
+                simd::assemble_noise_row(row, pw, scratch.previous.data() + pitch * std::size_t(i));
+            }
+        }
+        stripe_block_origins(tmpl, p_.grain_seed, stripe, width_, sx, sy, scratch.origins.data());
+        for (int i = 0; i < shared_rows; ++i) {
+            int16_t* cur = scratch.noise.data() + pitch * std::size_t(i);
+            point_at_template_row(scratch.origins.data(), i);
+            simd::assemble_noise_row(row, pw, cur);
+            const int w_old = sy ? 23 : (i == 0 ? 27 : 17), w_new = sy ? 22 : (i == 0 ? 17 : 27);
+            simd::cross_fade_row(scratch.previous.data() + pitch * std::size_t(i), cur, pw, w_old, w_new, gmin,
+                                 gmax);
+        }
         for (int i = 0; i < rows; ++i) {
             if (i < shared_rows) {
                 for (int b = 0; b < blocks; ++b)
@@ -190,14 +206,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                 row.seams = nullptr;
                 row.fade = false;
             } else {
-                const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
-                for (int b = 0; b < blocks; ++b) scratch.block_rows[std::size_t(b)] = t + scratch.origins[std::size_t(b)];
-                row.fade = fade_in_blend;
-                row.seams = nullptr;
-                if (overlap && !fade_in_blend) {
-                    overlap_seams(scratch.block_rows.data(), blocks, sx, bit_depth_, scratch.seams.data());
-                    row.seams = scratch.seams.data();
-                }
+                point_at_template_row(scratch.origins.data(), i);
             }
             blend_row(i, row);
         }

@@ -12,7 +12,7 @@
 #include "av1/av1_synthesis.hpp"
 #include "av1/block_synthesis.hpp"
 #include "av1/grain_blending.hpp"
-#include "av1/noise_stripe_rows.hpp"
+#include "av1/stripe_block_origins.hpp"
 #include "av1/simd/av1_kernels.hpp"
 #include "core/simd_targets.hpp"
 #include "fgc/blending.hpp"
@@ -355,14 +355,36 @@ TEST_P(SimdEquivalence, Av1NoiseStripeRows) {
             sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma,
             av1::stripe_block_offsets(p.grain_seed, stripe, blocks), sx, sy, overlap, bd);
         ASSERT_EQ(want.width, av1::noise_stripe_width(luma_width, sx));
-        const int row0 = uniform(0, want.height), row1 = uniform(row0, want.height);
-        std::vector<int16_t> got(std::size_t(want.width) * std::max(1, row1 - row0));
-        av1::build_noise_stripe_rows(sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma,
-                                     p.grain_seed, stripe, luma_width, sx, sy, overlap, bd, row0, row1, got.data(),
-                                     want.width);
-        for (int y = row0; y < row1; y++)
-            for (int x = 0; x < want.width; x++)
-                ASSERT_EQ(got[std::size_t(y - row0) * want.width + x], want.at(y, x)) << "row " << y << " x " << x;
+        // The optimized path's rows: every block's template origin, then each row assembled
+        // block by block with the horizontal overlap faded in the kernel (up to 10 bits) or
+        // from precomputed seams.
+        const av1::GrainTemplate tmpl = sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma;
+        std::vector<int32_t> origins(std::size_t(blocks), 0);
+        av1::stripe_block_origins(tmpl, p.grain_seed, stripe, luma_width, sx, sy, origins.data());
+        const int bw = 32 >> sx, width = blocks * bw;
+        const int gmax = (128 << (bd - 8)) - 1;
+        std::vector<const int16_t*> block_rows(static_cast<std::size_t>(blocks));
+        std::vector<uint32_t> seams(static_cast<std::size_t>(blocks));
+        std::vector<int16_t> got(static_cast<std::size_t>(width));
+        for (int y = 0; y < want.height; y++) {
+            for (int b = 0; b < blocks; b++)
+                block_rows[std::size_t(b)] = tmpl.samples.data() + std::ptrdiff_t(y) * tmpl.width + origins[std::size_t(b)];
+            av1::simd::BlockNoiseRow row;
+            row.blocks = block_rows.data();
+            row.block_width = bw;
+            if (overlap && bd <= 10 && uniform(0, 1)) {
+                row.fade = true;
+                row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
+                row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
+                row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
+            } else if (overlap) {
+                av1::overlap_seams(block_rows.data(), blocks, sx, bd, seams.data());
+                row.seams = seams.data();
+            }
+            av1::simd::assemble_noise_row(row, width, got.data());
+            for (int x = 0; x < width; x++)
+                ASSERT_EQ(got[std::size_t(x)], want.at(y, x)) << "row " << y << " x " << x << " bd " << bd;
+        }
     }
     // cross_fade_row against the overlap formula of build_stripe_noise
     for (int iter = 0; iter < 100; iter++) {

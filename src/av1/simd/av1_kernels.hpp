@@ -62,4 +62,7 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax);
 
+// out[x] = noise.at(x) for x < width.
+void assemble_noise_row(const BlockNoiseRow& noise, int width, int16_t* out);
+
 }  // namespace filmgrain::av1::simd

@@ -439,6 +439,28 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         bit_depth, min_value, max_value);
 }
 
+// A row's noise written out flat (the rows a stripe shares with the one above, which are
+// cross-faded before use), block by block as AddBlockNoise reads it.
+void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
+    const D16 d16;
+    const hn::Repartition<uint32_t, D16> d32;
+    const int n = int(hn::Lanes(d16));
+    const BlockNoiseRow row = noise_row;  // local: the int16 stores cannot alias it
+    auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
+    const FadeConstants fade{hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1]))),
+                             hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))),
+                             hn::Set(d16, row.gmin), hn::Set(d16, row.gmax)};
+    const int vec_end = n >= 2 ? width / n * n : 0;
+    const int bw = row.block_width;
+    for (int x = 0, b = 0; x < vec_end; x += bw, ++b) {
+        const int16_t* own = row.blocks[b];
+        const int in_block = std::min(bw, vec_end - x);
+        hn::StoreU(FirstNoiseOfBlock(d16, row, b, hn::LoadU(d16, own), fade), d16, out + x);
+        for (int j = n; j < in_block; j += n) hn::StoreU(hn::LoadU(d16, own + j), d16, out + x + j);
+    }
+    for (int x = vec_end; x < width; ++x) out[x] = row.at(x);
+}
+
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                   int gmax) {
     const hn::ScalableTag<int32_t> d32;
@@ -471,6 +493,7 @@ HWY_EXPORT(BlendLumaRowU16);
 HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
+HWY_EXPORT(AssembleNoiseRow);
 
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const uint8_t* scaling, int scaling_shift, int min_value, int max_value) {
@@ -496,6 +519,9 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax) {
     HWY_DYNAMIC_DISPATCH(CrossFadeRow)(old_row, cur, width, old_weight, new_weight, gmin, gmax);
+}
+void assemble_noise_row(const BlockNoiseRow& noise, int width, int16_t* out) {
+    HWY_DYNAMIC_DISPATCH(AssembleNoiseRow)(noise, width, out);
 }
 
 }  // namespace filmgrain::av1::simd

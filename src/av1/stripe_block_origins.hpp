@@ -1,8 +1,6 @@
-// The noise stripe of AV1 spec 7.18.3.5 built row range by row range into caller-owned
-// memory: the same values as build_noise_stripe (block_synthesis), without allocation and
-// with whole template rows copied at once. The optimized stripe path uses it; a stripe's
-// vertical overlap then needs only the two (one) bottom rows of the previous stripe,
-// which are rebuilt here instead of the whole previous stripe.
+// Where the optimized AV1 path reads each row's noise (7.18.3.5): the template origin of
+// every 32x32 block of a stripe, and the samples the horizontal overlap changes. The rows
+// themselves are not copied into a noise stripe: the blends read them from the template.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -13,16 +11,6 @@ namespace filmgrain::av1 {
 
 // Width of the noise stripe of a plane: every block plus its overlap columns.
 int noise_stripe_width(int luma_width, int subsampling_x);
-
-// Rows [row0, row1) of stripe `stripe`'s noise stripe (0 <= row0 <= row1 <= (34 >> suby))
-// into out[(i - row0) * out_stride + x] for x < noise_stripe_width().
-void build_noise_stripe_rows(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
-                             int subsampling_y, bool overlap, int bit_depth, int row0, int row1, int16_t* out,
-                             std::ptrdiff_t out_stride);
-
-}  // namespace filmgrain::av1
-
-namespace filmgrain::av1 {
 
 // Where each block of stripe `stripe` reads the template (7.18.3.5 offsetX/offsetY): the
 // index in tmpl.samples of the block's first sample, for the num_blocks_across(luma_width)
