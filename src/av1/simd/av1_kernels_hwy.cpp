@@ -152,7 +152,6 @@ HWY_INLINE void ChromaScalingIndices(const Pixel* src, const Pixel* luma, int x,
 // the lower and upper lanes of each 128-bit block and the narrowing pack then restore the
 // lane order. Needs at least 8 lanes (every x86 target but the scalar one).
 #if HWY_TARGET != HWY_SCALAR
-#define FILMGRAIN_CHROMA_INDICES ChromaScalingIndices16
 template <typename Pixel, typename Out>
 HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int x, int count, int subsampling_x,
                                        const ChromaScalingIndex& index, int bit_depth, Out* out) {
@@ -202,9 +201,18 @@ HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int 
             hn::Store(m, d16, out + k);
     }
 }
-#else
-#define FILMGRAIN_CHROMA_INDICES ChromaScalingIndices
 #endif
+
+// ChromaScalingIndices16 where the target has the lanes for it.
+template <typename Pixel, typename Out>
+HWY_INLINE void ChromaIndicesForTarget(const Pixel* src, const Pixel* luma, int x, int count, int subsampling_x,
+                                       const ChromaScalingIndex& index, int bit_depth, Out* out) {
+#if HWY_TARGET != HWY_SCALAR
+    ChromaScalingIndices16(src, luma, x, count, subsampling_x, index, bit_depth, out);
+#else
+    ChromaScalingIndices(src, luma, x, count, subsampling_x, index, bit_depth, out);
+#endif
+}
 
 // The samples the vector loops leave, one by one (AV1 7.18.3.5); scaled(merged, noise) is
 // Round2(scale_lut(merged) * noise, shift).
@@ -411,7 +419,7 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
     HWY_ALIGN uint8_t scale[kChunk];
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        FILMGRAIN_CHROMA_INDICES(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
+        ChromaIndicesForTarget(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
         LookUpScaling8(merged, scale, chunk, scaling);
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
@@ -429,7 +437,7 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        FILMGRAIN_CHROMA_INDICES(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
+        ChromaIndicesForTarget(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
         scales.LookUp(merged, chunk);
         AddBlockNoise(src, dst, noise, x, chunk, [&](int k) { return scales.At(k); }, min_value, max_value);
     }
