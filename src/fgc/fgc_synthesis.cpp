@@ -42,7 +42,7 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     for (const auto& s : scratch_)
         n += s.stripe.capacity() * sizeof(int32_t) + s.sums.capacity() * sizeof(uint32_t) +
              s.blocks.capacity() * sizeof(const int16_t*) + s.narrow_blocks.capacity() * sizeof(const int8_t*) + s.origins.capacity() * sizeof(int32_t) +
-             s.row.capacity() * sizeof(int16_t) +
+             s.band.capacity() * sizeof(int16_t) + s.narrow_band.capacity() +
              s.scaled.capacity() * sizeof(int16_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
     return n;
 }
@@ -237,21 +237,44 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     // rdd5 has no grain at or past the right edge; both have two zero columns of padding,
     // which the deblocking of the last edge reads
     const int zero_from = rdd5 ? w : grain_width;
-    int16_t* g = scratch.row.data();
+    // The grain of one block row (kBlock picture rows) at a time, each row after one readable
+    // element, which the u8 kernel loads (column 0 is never filtered): every block's pointer
+    // is read once for all its rows.
+    const std::ptrdiff_t band_stride = grain_width + 3;
+    Table* band;
+    if constexpr (sizeof(Table) == 1)
+        band = scratch.narrow_band.data() + 1;
+    else
+        band = scratch.band.data() + 1;
     const int rows = std::min(kRandBlock, h - y_top);
-    for (int l = 0; l < rows; l++) {
-        const Table* const* block_row = blocks + (l / kBlock) * columns;
-        const std::ptrdiff_t r = std::ptrdiff_t(l % kBlock) * pitch;
-        if constexpr (sizeof(Table) == 1)
-            simd::gather_block_rows_i8(block_row, r, columns, kBlock, g);
+    for (int yi = 0; yi * kBlock < rows; yi++) {
+        const Table* const* block_row = blocks + yi * columns;
+        const int band_rows = std::min(kBlock, rows - yi * kBlock);
+        auto gather = [&](int n) {
+            for (int j = 0; j < columns; j++) {
+                const Table* b = block_row[j];
+                Table* out = band + j * kBlock;
+                for (int l = 0; l < n; l++)
+                    std::memcpy(out + l * band_stride, b + l * pitch, sizeof(Table) * kBlock);
+            }
+        };
+        if (band_rows == kBlock)
+            gather(kBlock);  // a constant count: the row loop unrolls
         else
-            for (int j = 0; j < columns; j++) std::memcpy(g + j * kBlock, block_row[j] + r, sizeof(int16_t) * kBlock);
-        std::fill(g + zero_from, g + grain_width + 2, int16_t(0));
-        const int y = y_top + l;
-        if constexpr (sizeof(Pixel) == 1)
-            simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
-        else
-            simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
+            gather(band_rows);
+        for (int l = 0; l < band_rows; l++) {
+            Table* g = band + l * band_stride;
+            std::fill(g + zero_from, g + grain_width + 2, Table(0));
+            const int y = y_top + yi * kBlock + l;
+            if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1)
+                simd::deblock_blend_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
+            else if constexpr (sizeof(Pixel) == 1)
+                simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
+            else if constexpr (sizeof(Table) == 1)
+                simd::deblock_blend_row_u16_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
+            else
+                simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
+        }
     }
 }
 
@@ -299,12 +322,15 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
     // Every worker's buffers are sized here, on the calling thread, for the widest plane:
     // a worker that got no stripe in the first frames cannot allocate later.
     const int blocks_x = (src.width + rb - 1) / rb;
-    bool all_tables = true;
+    bool all_tables = true, any_narrow = false, any_wide = false;
     if (kernels_ == Kernels::kOptimized)
         for (int c = 0; c < src.plane_count() && c < 3; c++)
             if (!params.cancelled && params.comp[c].present) {
                 have_scaled_[c] = scaled_[c].update(params.comp[c], cache_, params.log2_scale_factor + 6);
                 all_tables &= have_scaled_[c];
+                const bool narrow = have_scaled_[c] && scaled_[c].narrow();
+                any_narrow |= narrow;
+                any_wide |= !narrow;
             }
     auto grow = [](auto& v, std::size_t n) {
         if (v.size() < n) v.resize(n);
@@ -317,7 +343,10 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
             grow(s.blocks, std::size_t(blocks_x) * 4);
             grow(s.narrow_blocks, std::size_t(blocks_x) * 4);
             grow(s.origins, std::size_t(blocks_x));
-            grow(s.row, std::size_t(blocks_x * rb + 2));
+            // one block row of grain: block_size rows of the stripe's width, 3 columns of padding
+            const std::size_t band = std::size_t(blocks_x * rb + 3) * std::size_t(block_size_);
+            if (any_narrow) grow(s.narrow_band, band);
+            if (any_wide) grow(s.band, band);
             if (!all_tables) {
                 grow(s.scaled, std::size_t(blocks_x) * rb * rb);
                 grow(s.copies, std::size_t(blocks_x) * 4);

@@ -61,7 +61,8 @@ private:
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
         std::vector<const int8_t*> narrow_blocks;  // ... when the tables are int8
         std::vector<int32_t> origins;         // ... each randomization block's place in the tables
-        std::vector<int16_t> row;             // optimized path: one grain row of the stripe
+        std::vector<int16_t> band;            // optimized path: the grain of one block row
+        std::vector<int8_t> narrow_band;      // ... when the tables are int8
         std::vector<int16_t> scaled;          // components without scaled tables: blocks scaled here
         std::vector<simd::BlockCopy> copies;  // ... by these copies
     };

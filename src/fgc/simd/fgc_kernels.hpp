@@ -30,9 +30,11 @@ void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain
 void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
                            int bit_depth);
 
-// One grain row from int8 block rows: out[j * block + k] = rows[j][offset + k] for j < count,
-// k < block (8, 16 or 32). Twin of the element-wise widening copy.
-void gather_block_rows_i8(const int8_t* const* rows, std::ptrdiff_t offset, int count, int block, int16_t* out);
+// The same from int8 grain, as the narrow scaled tables hold it (|g| <= 128). The u8 kernel
+// also reads grain[-1] (any value: column 0 is never filtered); both read grain[width].
+void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size);
+void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
+                              int bit_depth);
 
 // Sums of `rows` x `block` sample blocks for the `width / block` whole blocks that start
 // at x = 0, block, 2*block, ... (block 8, 16 or 32; rows 1..32): the integer sums the local

@@ -79,7 +79,8 @@ HWY_INLINE V DeblockedGrain(D d, const int16_t* grain, int x, V phase, V last) {
 }
 
 // bs is 8, 16 or 32: a mask gives x mod bs (a division per sample costs more than the rest)
-inline int32_t deblocked_scalar(const int16_t* g, int x, int width, int bs) {
+template <typename G>
+inline int32_t deblocked_scalar(const G* g, int x, int width, int bs) {
     const bool right_of_edge = (x & (bs - 1)) == 0 && x > 0;
     const bool left_of_edge = (x & (bs - 1)) == bs - 1 && x + 1 < width;
     if (right_of_edge || left_of_edge) return (g[x - 1] + (g[x] << 1) + g[x + 1]) >> 2;
@@ -120,11 +121,71 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
         dst[x] = uint8_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size), 0, 255));
 }
 
+// floor((p + q) / 2) of unsigned bytes: AverageRound rounds halves up, so an odd sum gives
+// back its carry.
+template <class D, class V>
+HWY_INLINE V FloorAverageU8(D d, V p, V q) {
+    return hn::Sub(hn::AverageRound(p, q), hn::And(hn::Xor(p, q), hn::Set(d, uint8_t(1))));
+}
+
+// The [1 2 1] / 4 filter and the clipped addition done entirely in bytes, 32 samples per
+// AVX2 vector. Grain biased by 128 is unsigned and the bias survives floor averaging, and
+// (a + 2b + c) >> 2 = floor((floor((a + c) / 2) + b) / 2): an odd a + c loses a half that
+// cannot carry the outer floor over an integer. Biasing the picture by 128 the other way
+// makes clip(src + g, 0, 255) a signed saturating add.
+void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size) {
+    const hn::ScalableTag<uint8_t> du;
+    const hn::RebindToSigned<decltype(du)> di;
+    const int n = int(hn::Lanes(du));
+    const auto bias = hn::Set(du, uint8_t(0x80));
+    const auto last = hn::Set(du, uint8_t(block_size - 1));
+    const auto lane = hn::Iota(du, 0);
+    // block_size divides 256, so the position modulo block_size survives the byte wrap
+    auto edges_at = [&](int x) {
+        const auto phase = hn::And(hn::Add(lane, hn::Set(du, uint8_t(x))), last);
+        return hn::Or(hn::Eq(phase, hn::Zero(du)), hn::Eq(phase, last));
+    };
+    const bool same_phase = n % block_size == 0;
+    const auto edges0 = edges_at(0);
+    // g points at grain[x - 1]; `filtered` says which lanes sit either side of an edge
+    auto blend = [&](const uint8_t* s, const int8_t* g, uint8_t* d, auto filtered) {
+        const auto a = hn::Xor(hn::BitCast(du, hn::LoadU(di, g)), bias);
+        const auto b = hn::Xor(hn::BitCast(du, hn::LoadU(di, g + 1)), bias);
+        const auto c = hn::Xor(hn::BitCast(du, hn::LoadU(di, g + 2)), bias);
+        const auto f = FloorAverageU8(du, FloorAverageU8(du, a, c), b);
+        const auto gr = hn::BitCast(di, hn::Xor(hn::IfThenElse(filtered, f, b), bias));
+        const auto sv = hn::BitCast(di, hn::Xor(hn::LoadU(du, s), bias));
+        hn::StoreU(hn::Xor(hn::BitCast(du, hn::SaturatedAdd(sv, gr)), bias), du, d);
+    };
+    // Column 0 has no edge on its left, and no edge lies at `width` for the last column of a
+    // row of whole blocks to be left of.
+    const bool whole_blocks = width % block_size == 0;
+    auto filtered_at = [&](int x) {
+        auto m = same_phase ? edges0 : edges_at(x);
+        if (x == 0) m = hn::AndNot(hn::FirstN(du, 1), m);
+        if (whole_blocks && x + n >= width) m = hn::And(m, hn::FirstN(du, std::size_t(width - 1 - x)));
+        return m;
+    };
+    int x = 0;
+    for (; x + n <= width; x += n) blend(src + x, grain + x - 1, dst + x, filtered_at(x));
+    if (x < width) {
+        // the last partial vector through buffers, so that nothing past the row is touched
+        HWY_ALIGN uint8_t s[hn::MaxLanes(du)] = {}, d[hn::MaxLanes(du)];
+        HWY_ALIGN int8_t g[hn::MaxLanes(du) + 2] = {};
+        const int rest = width - x;
+        std::copy(src + x, src + width, s);
+        std::copy(grain + x - 1, grain + width + 1, g);
+        blend(s, g, d, filtered_at(x));
+        std::copy(d, d + rest, dst + x);
+    }
+}
+
 // Up to 12 bits everything fits int16 lanes (twice as many per vector as int32): with
 // |grain| <= 32385 >> (16 - bd), the [1 2 1] sum is at most 4 * 2024 and the shifted grain
 // at most 32385; src + grain may pass 32767 only where the clip to 2^bd - 1 applies anyway,
 // so a saturating add gives the same result.
-void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
+template <typename G>
+void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
                               int bit_depth) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint16_t, decltype(d16)> du16;
@@ -137,10 +198,16 @@ void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const int16_t*
         dst[x] = uint16_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size) * (1 << shift), 0,
                                               max_value));
     };
+    auto load = [&](const G* p) {
+        if constexpr (sizeof(G) == 1)
+            return hn::PromoteTo(d16, hn::LoadU(hn::Rebind<int8_t, decltype(d16)>(), p));
+        else
+            return hn::LoadU(d16, p);
+    };
     auto blend = [&](int at, auto edge) {
-        const auto a = hn::LoadU(d16, grain + at - 1);
-        const auto b = hn::LoadU(d16, grain + at);
-        const auto c = hn::LoadU(d16, grain + at + 1);
+        const auto a = load(grain + at - 1);
+        const auto b = load(grain + at);
+        const auto c = load(grain + at + 1);
         const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
         const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
         const auto s = hn::BitCast(d16, hn::LoadU(du16, src + at));
@@ -160,11 +227,12 @@ void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const int16_t*
     for (; x < width; x++) blend1(x);
 }
 
-void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
-                        int bit_depth) {
-    if (bit_depth <= 12) return DeblockBlendRowU16Narrow(src, dst, grain, width, block_size, bit_depth);
+template <typename G>
+void DeblockBlendRowU16Of(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
+                            int bit_depth) {
+    if (bit_depth <= 12) return DeblockBlendRowU16Narrow<G>(src, dst, grain, width, block_size, bit_depth);
     const hn::ScalableTag<int32_t> d32;
-    const hn::Rebind<int16_t, decltype(d32)> d16;
+    const hn::Rebind<G, decltype(d32)> dg;
     const hn::Rebind<uint16_t, decltype(d32)> du16;
     const int n = int(hn::Lanes(d32));
     const int shift = bit_depth - 8;
@@ -180,9 +248,9 @@ void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain
     const auto step = hn::Set(d32, n);
     auto phase = hn::And(hn::Iota(d32, 1), bs_mask);
     auto blend = [&](int at, auto edge) {
-        const auto a = hn::PromoteTo(d32, hn::LoadU(d16, grain + at - 1));
-        const auto b = hn::PromoteTo(d32, hn::LoadU(d16, grain + at));
-        const auto c = hn::PromoteTo(d32, hn::LoadU(d16, grain + at + 1));
+        const auto a = hn::PromoteTo(d32, hn::LoadU(dg, grain + at - 1));
+        const auto b = hn::PromoteTo(d32, hn::LoadU(dg, grain + at));
+        const auto c = hn::PromoteTo(d32, hn::LoadU(dg, grain + at + 1));
         const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
         const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
         const auto s = hn::PromoteTo(d32, hn::LoadU(du16, src + at));
@@ -199,35 +267,13 @@ void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain
     for (; x < width; x++) blend1(x);
 }
 
-template <int kBlock>
-HWY_INLINE void GatherBlockRowsI8Fixed(const int8_t* const* rows, std::ptrdiff_t offset, int count, int16_t* out) {
-    const hn::CappedTag<int16_t, 8> d16;
-    const hn::Rebind<int8_t, decltype(d16)> d8;
-    int j = 0;
-    // two blocks per step: independent loads from two places in the tables
-    for (; j + 2 <= count; j += 2, out += 2 * kBlock) {
-        const int8_t* a = rows[j] + offset;
-        const int8_t* b = rows[j + 1] + offset;
-        for (int k = 0; k < kBlock; k += 8) {
-            const auto va = hn::PromoteTo(d16, hn::LoadU(d8, a + k));
-            const auto vb = hn::PromoteTo(d16, hn::LoadU(d8, b + k));
-            hn::StoreU(va, d16, out + k);
-            hn::StoreU(vb, d16, out + kBlock + k);
-        }
-    }
-    if (j < count)
-        for (int k = 0; k < kBlock; k += 8) hn::StoreU(hn::PromoteTo(d16, hn::LoadU(d8, rows[j] + offset + k)), d16, out + k);
+void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
+                        int bit_depth) {
+    DeblockBlendRowU16Of<int16_t>(src, dst, grain, width, block_size, bit_depth);
 }
-
-void GatherBlockRowsI8(const int8_t* const* rows, std::ptrdiff_t offset, int count, int block, int16_t* out) {
-    const hn::CappedTag<int16_t, 8> d16;
-    if (hn::Lanes(d16) == 8) {  // every target but SCALAR
-        if (block == 8) return GatherBlockRowsI8Fixed<8>(rows, offset, count, out);
-        if (block == 16) return GatherBlockRowsI8Fixed<16>(rows, offset, count, out);
-        if (block == 32) return GatherBlockRowsI8Fixed<32>(rows, offset, count, out);
-    }
-    for (int j = 0; j < count; j++, out += block)
-        for (int k = 0; k < block; k++) out[k] = rows[j][offset + k];
+void DeblockBlendRowU16I8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
+                          int bit_depth) {
+    DeblockBlendRowU16Of<int8_t>(src, dst, grain, width, block_size, bit_depth);
 }
 
 void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
@@ -286,12 +332,9 @@ namespace filmgrain::fgc::simd {
 HWY_EXPORT(ScaleTemplateBlocks);
 HWY_EXPORT(DeblockBlendRowU8);
 HWY_EXPORT(DeblockBlendRowU16);
+HWY_EXPORT(DeblockBlendRowU8I8);
+HWY_EXPORT(DeblockBlendRowU16I8);
 HWY_EXPORT(BlockSumsU8);
-HWY_EXPORT(GatherBlockRowsI8);
-
-void gather_block_rows_i8(const int8_t* const* rows, std::ptrdiff_t offset, int count, int block, int16_t* out) {
-    HWY_DYNAMIC_DISPATCH(GatherBlockRowsI8)(rows, offset, count, block, out);
-}
 HWY_EXPORT(BlockSumsU16);
 
 void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
@@ -303,6 +346,13 @@ void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain
 void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
                            int bit_depth) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16)(src, dst, grain, width, block_size, bit_depth);
+}
+void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8I8)(src, dst, grain, width, block_size);
+}
+void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
+                              int bit_depth) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16I8)(src, dst, grain, width, block_size, bit_depth);
 }
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);
