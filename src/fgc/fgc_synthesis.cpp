@@ -258,7 +258,9 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
                     std::memcpy(out + l * band_stride, b + l * pitch, sizeof(Table) * kBlock);
             }
         };
-        if (band_rows == kBlock)
+        if constexpr (sizeof(Table) == 1)
+            simd::gather_block_bands_i8(block_row, columns, kBlock, band_rows, pitch, band, band_stride);
+        else if (band_rows == kBlock)
             gather(kBlock);  // a constant count: the row loop unrolls
         else
             gather(band_rows);
