@@ -122,23 +122,20 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
         dst[x] = uint8_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size), 0, 255));
 }
 
-// floor((p + q) / 2) of unsigned bytes: AverageRound rounds halves up, so an odd sum gives
-// back its carry.
-template <class D, class V>
-HWY_INLINE V FloorAverageU8(D d, V p, V q) {
-    return hn::Sub(hn::AverageRound(p, q), hn::And(hn::Xor(p, q), hn::Set(d, uint8_t(1))));
-}
-
 // The [1 2 1] / 4 filter and the clipped addition done entirely in bytes, 32 samples per
-// AVX2 vector. Grain biased by 128 is unsigned and the bias survives floor averaging, and
-// (a + 2b + c) >> 2 = floor((floor((a + c) / 2) + b) / 2): an odd a + c loses a half that
-// cannot carry the outer floor over an integer. Biasing the picture by 128 the other way
-// makes clip(src + g, 0, 255) a signed saturating add.
+// AVX2 vector. (a + 2b + c) >> 2 = floor((floor((a + c) / 2) + b) / 2): an odd a + c loses
+// a half that cannot carry the outer floor over an integer. With grain biased by 128 the
+// values are unsigned and the bias survives floor averaging; a floor average is the
+// complement of the rounding average (AverageRound) of the complements, and the complement
+// of biased grain is grain ^ 0x7F, so the filter is two AverageRounds between four XORs.
+// Biasing the picture by 128 the other way makes clip(src + g, 0, 255) a signed
+// saturating add.
 void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size) {
     const hn::ScalableTag<uint8_t> du;
     const hn::RebindToSigned<decltype(du)> di;
     const int n = int(hn::Lanes(du));
     const auto bias = hn::Set(du, uint8_t(0x80));
+    const auto flip = hn::Set(du, uint8_t(0x7F));
     const auto last = hn::Set(du, uint8_t(block_size - 1));
     const auto lane = hn::Iota(du, 0);
     // block_size divides 256, so the position modulo block_size survives the byte wrap
@@ -146,15 +143,13 @@ void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, 
         const auto phase = hn::And(hn::Add(lane, hn::Set(du, uint8_t(x))), last);
         return hn::Or(hn::Eq(phase, hn::Zero(du)), hn::Eq(phase, last));
     };
-    const bool same_phase = n % block_size == 0;
-    const auto edges0 = edges_at(0);
     // g points at grain[x - 1]; `filtered` says which lanes sit either side of an edge
     auto blend = [&](const uint8_t* s, const int8_t* g, uint8_t* d, auto filtered) {
-        const auto a = hn::Xor(hn::BitCast(du, hn::LoadU(di, g)), bias);
-        const auto b = hn::Xor(hn::BitCast(du, hn::LoadU(di, g + 1)), bias);
-        const auto c = hn::Xor(hn::BitCast(du, hn::LoadU(di, g + 2)), bias);
-        const auto f = FloorAverageU8(du, FloorAverageU8(du, a, c), b);
-        const auto gr = hn::BitCast(di, hn::Xor(hn::IfThenElse(filtered, f, b), bias));
+        const auto b = hn::BitCast(du, hn::LoadU(di, g + 1));
+        const auto na = hn::Xor(hn::BitCast(du, hn::LoadU(di, g)), flip);
+        const auto nc = hn::Xor(hn::BitCast(du, hn::LoadU(di, g + 2)), flip);
+        const auto nf = hn::AverageRound(hn::AverageRound(na, nc), hn::Xor(b, flip));
+        const auto gr = hn::BitCast(di, hn::IfThenElse(filtered, hn::Xor(nf, flip), b));
         const auto sv = hn::BitCast(di, hn::Xor(hn::LoadU(du, s), bias));
         hn::StoreU(hn::Xor(hn::BitCast(du, hn::SaturatedAdd(sv, gr)), bias), du, d);
     };
@@ -162,22 +157,33 @@ void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, 
     // row of whole blocks to be left of.
     const bool whole_blocks = width % block_size == 0;
     auto filtered_at = [&](int x) {
-        auto m = same_phase ? edges0 : edges_at(x);
+        auto m = edges_at(x);
         if (x == 0) m = hn::AndNot(hn::FirstN(du, 1), m);
         if (whole_blocks && x + n >= width) m = hn::And(m, hn::FirstN(du, std::size_t(width - 1 - x)));
         return m;
     };
     int x = 0;
-    for (; x + n <= width; x += n) blend(src + x, grain + x - 1, dst + x, filtered_at(x));
-    if (x < width) {
+    if (n < width) {  // the first vector; a last one that ends the row exactly is done below
+        blend(src, grain - 1, dst, filtered_at(0));
+        x = n;
+    }
+    if (n % block_size == 0) {
+        // every vector starts at the same phase: one edge mask for the whole row
+        const auto edges = edges_at(0);
+        for (; x + n < width; x += n) blend(src + x, grain + x - 1, dst + x, edges);
+    } else {
+        for (; x + n < width; x += n) blend(src + x, grain + x - 1, dst + x, edges_at(x));
+    }
+    if (x + n == width) {
+        blend(src + x, grain + x - 1, dst + x, filtered_at(x));
+    } else if (x < width) {
         // the last partial vector through buffers, so that nothing past the row is touched
         HWY_ALIGN uint8_t s[hn::MaxLanes(du)] = {}, d[hn::MaxLanes(du)];
         HWY_ALIGN int8_t g[hn::MaxLanes(du) + 2] = {};
-        const int rest = width - x;
         std::copy(src + x, src + width, s);
         std::copy(grain + x - 1, grain + width + 1, g);
         blend(s, g, d, filtered_at(x));
-        std::copy(d, d + rest, dst + x);
+        std::copy(d, d + (width - x), dst + x);
     }
 }
 
