@@ -41,7 +41,7 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     for (const auto& st : states_) n += st.capacity() * sizeof(uint32_t);
     for (const auto& s : scratch_)
         n += s.stripe.capacity() * sizeof(int32_t) + s.sums.capacity() * sizeof(uint32_t) +
-             s.blocks.capacity() * sizeof(const int16_t*) + s.narrow_blocks.capacity() * sizeof(const int8_t*) + s.origins.capacity() * sizeof(int32_t) +
+             s.blocks.capacity() * sizeof(const int16_t*) + s.narrow_blocks.capacity() * sizeof(const int8_t*) + s.places.capacity() * sizeof(int32_t) +
              s.band.capacity() * sizeof(int16_t) + s.narrow_band.capacity() +
              s.scaled.capacity() * sizeof(int16_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
     return n;
@@ -147,12 +147,14 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     const uint32_t* states = states_[c].data() + std::size_t(by) * std::size_t(blocks_x);
     const int y_top = by * kRandBlock;
 
-    // Each randomization block's position in the template and its sign, as an offset into
-    // an interval's pair of scaled tables (the negative table follows the positive one).
-    int32_t* origins = scratch.origins.data();
+    // Each block column's position in the template and its sign (those of its randomization
+    // block), as an offset into an interval's pair of scaled tables (the negative table
+    // follows the positive one).
+    int32_t* places = scratch.places.data();
     for (int b = 0; b < blocks_x; b++) {
         const BlockOffset off = block_offset_from_state(states[b], kBlock);
-        origins[b] = off.y * kTemplateSize + off.x + int32_t(states[b] & 1u) * kTemplateSize * kTemplateSize;
+        const int32_t origin = off.y * kTemplateSize + off.x + int32_t(states[b] & 1u) * kTemplateSize * kTemplateSize;
+        for (int sub = 0; sub < kSub; sub++) places[b * kSub + sub] = origin + sub * kBlock;
     }
     const Table* const kNoGrain = kZeroGrain<Table>;
     const Table* table0 = tables ? scaled_[c].template table<Table>(0, 0) : nullptr;
@@ -183,13 +185,12 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
         if (tables && rows_inside == kBlock) {
             // Whole blocks, the bulk of the picture: both flavours shift the sum by
             // log2(area) + bd - 8 (rdd5 divides by the area, exactly a shift here).
+            // The average is at most 255 at any bit depth; blocks in no interval read the
+            // zero table (table_offsets_).
             const int avg_shift = kLog2Area + bit_depth - 8;
-            for (; j < whole_blocks; j++) {
-                const int iv = comp.interval_of_intensity[std::min<uint32_t>(sums[j] >> avg_shift, 255)];
-                block_row[j] = iv < 0 ? kNoGrain
-                                      : table0 + iv * kIntervalPitch + origins[j / kSub] + row_offset +
-                                            (j % kSub) * kBlock;
-            }
+            const int32_t* offsets = table_offsets_[c].data();
+            const Table* base = table0 + row_offset;
+            for (; j < whole_blocks; j++) block_row[j] = base + offsets[sums[j] >> avg_shift] + places[j];
         }
         for (; j < columns; j++) {
             const int x0 = j * kBlock;
@@ -218,7 +219,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
                 continue;
             }
             if (tables) {
-                block_row[j] = table0 + iv * kIntervalPitch + origins[j / kSub] + row_offset + (j % kSub) * kBlock;
+                block_row[j] = table0 + iv * kIntervalPitch + places[j] + row_offset;
             } else if constexpr (sizeof(Table) == 2) {  // narrow tables exist only with tables
                 const BlockOffset off = block_offset_from_state(states[j / kSub], kBlock);
                 const int offset = (off.y + yi * kBlock) * kTemplateSize + off.x + (j % kSub) * kBlock;
@@ -329,6 +330,12 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
         for (int c = 0; c < src.plane_count() && c < 3; c++)
             if (!params.cancelled && params.comp[c].present) {
                 have_scaled_[c] = scaled_[c].update(params.comp[c], cache_, params.log2_scale_factor + 6);
+                if (have_scaled_[c])
+                    for (int a = 0; a < 256; a++) {
+                        const int iv = params.comp[c].interval_of_intensity[std::size_t(a)];
+                        table_offsets_[c][std::size_t(a)] =
+                            (iv < 0 ? scaled_[c].zero_interval() : iv) * 2 * kTemplateSize * kTemplateSize;
+                    }
                 all_tables &= have_scaled_[c];
                 const bool narrow = have_scaled_[c] && scaled_[c].narrow();
                 any_narrow |= narrow;
@@ -344,7 +351,7 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
             grow(s.sums, std::size_t(blocks_x) * 4);
             grow(s.blocks, std::size_t(blocks_x) * 4);
             grow(s.narrow_blocks, std::size_t(blocks_x) * 4);
-            grow(s.origins, std::size_t(blocks_x));
+            grow(s.places, std::size_t(blocks_x) * 2);
             // one block row of grain: block_size rows of the stripe's width, 3 columns of padding
             const std::size_t band = std::size_t(blocks_x * rb + 3) * std::size_t(block_size_);
             if (any_narrow) grow(s.narrow_band, band);

@@ -3,6 +3,7 @@
 // at vertical block edges and blended. Stripes are independent, so they can run in any
 // order or in parallel with identical output.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -60,7 +61,7 @@ private:
         std::vector<uint32_t> sums;           // block sums of the stripe's block rows
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
         std::vector<const int8_t*> narrow_blocks;  // ... when the tables are int8
-        std::vector<int32_t> origins;         // ... each randomization block's place in the tables
+        std::vector<int32_t> places;          // ... each block column's place in the tables
         std::vector<int16_t> band;            // optimized path: the grain of one block row
         std::vector<int8_t> narrow_band;      // ... when the tables are int8
         std::vector<int16_t> scaled;          // components without scaled tables: blocks scaled here
@@ -85,6 +86,9 @@ private:
     std::vector<uint32_t> states_[3];
     ScaledTemplates scaled_[3];
     bool have_scaled_[3] = {false, false, false};
+    // Per component and block average: the offset of its interval's tables from interval 0
+    // (of the zero table when it has no interval), for the components with tables.
+    std::array<int32_t, 256> table_offsets_[3] = {};
     std::vector<Scratch> scratch_;
 };
 

@@ -23,7 +23,8 @@ bool ScaledTemplates::update(const ResolvedComponent& comp, const TemplateCache&
     if (same) return true;
     keys_.clear();
     narrow_data_.clear();
-    data_.resize(n * 2 * kTemplateSize * kTemplateSize);
+    data_.resize((n + 1) * 2 * kTemplateSize * kTemplateSize);
+    std::fill(data_.begin() + std::ptrdiff_t(n * 2 * kTemplateSize * kTemplateSize), data_.end(), int16_t(0));
     std::vector<simd::BlockCopy> copies;
     copies.reserve(n * 2);
     for (std::size_t i = 0; i < n; i++) {

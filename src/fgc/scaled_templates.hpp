@@ -1,6 +1,6 @@
 // The templates of one component's intensity intervals already scaled for blending: for each
 // interval and block sign, (sign * scale * template) >> (log2_scale_factor + 6) (RDD 5 4.3,
-// TR 23002-9 7.3.2) as int16. The optimized stripes then copy a block's rows instead of
+// TR 23002-9 7.3.2) as int16, and one table of zeros. The optimized stripes then copy a block's rows instead of
 // multiplying every sample of every block; the values are the ones the reference computes
 // per sample, so the output is unchanged.
 #pragma once
@@ -30,6 +30,10 @@ public:
     // tables are then held as int8, half the size, so that the tables of a component's
     // intervals stay in the first-level cache while its stripes copy block rows out of them.
     bool narrow() const { return !narrow_data_.empty(); }
+
+    // One more interval after the signalled ones is all zeros: blocks in no interval take
+    // their (zero) grain from it like any other block, so the stripe needs no branch.
+    int zero_interval() const { return int(keys_.size()); }
 
     // Row 0 of interval `interval`'s table for the sign of LFSR state bit 0 (`negative`);
     // rows are 64 values apart, as in the raw template. table<int8_t> when narrow(), else
