@@ -355,8 +355,12 @@ void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int widt
     for (; x + n <= limit; x += n) {
         auto acc = hn::Zero(d32);
         for (int y = 0; y < rows; y++) acc = hn::Add(acc, hn::PromoteTo(d32, hn::LoadU(d16, src + pitch * y + x)));
-        hn::Store(acc, d32, lanes);
-        for (int i = 0; i < n; i++) sums[(x + i) >> log2_block] += lanes[i];
+        if (block % n == 0) {  // the vector lies in one block: a horizontal sum, not n scalar adds
+            sums[x >> log2_block] += hn::GetLane(hn::SumOfLanes(d32, acc));
+        } else {
+            hn::Store(acc, d32, lanes);
+            for (int i = 0; i < n; i++) sums[(x + i) >> log2_block] += lanes[i];
+        }
     }
     for (; x < limit; x++)
         for (int y = 0; y < rows; y++) sums[x >> log2_block] += src[pitch * y + x];
