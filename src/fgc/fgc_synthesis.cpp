@@ -238,9 +238,10 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     // rdd5 has no grain at or past the right edge; both have two zero columns of padding,
     // which the deblocking of the last edge reads
     const int zero_from = rdd5 ? w : grain_width;
-    // The grain of one block row (kBlock picture rows) at a time, each row after one readable
-    // element, which the u8 kernel loads (column 0 is never filtered): every block's pointer
-    // is read once for all its rows.
+    // The grain of up to kBandRows rows of one block row at a time, each row after one
+    // readable element, which the u8 kernel loads (column 0 is never filtered): a block's
+    // pointer is read once for all those rows, and the band stays small enough to be read
+    // back from the first-level cache.
     const std::ptrdiff_t band_stride = grain_width + 3;
     Table* band;
     if constexpr (sizeof(Table) == 1)
@@ -248,27 +249,28 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
     else
         band = scratch.band.data() + 1;
     const int rows = std::min(kRandBlock, h - y_top);
-    for (int yi = 0; yi * kBlock < rows; yi++) {
-        const Table* const* block_row = blocks + yi * columns;
-        const int band_rows = std::min(kBlock, rows - yi * kBlock);
+    for (int l0 = 0; l0 < rows; l0 += kBandRows) {
+        const Table* const* block_row = blocks + (l0 / kBlock) * columns;
+        const std::ptrdiff_t r0 = std::ptrdiff_t(l0 % kBlock) * pitch;
+        const int band_rows = std::min(kBandRows, rows - l0);
         auto gather = [&](int n) {
             for (int j = 0; j < columns; j++) {
-                const Table* b = block_row[j];
+                const Table* b = block_row[j] + r0;
                 Table* out = band + j * kBlock;
                 for (int l = 0; l < n; l++)
                     std::memcpy(out + l * band_stride, b + l * pitch, sizeof(Table) * kBlock);
             }
         };
         if constexpr (sizeof(Table) == 1)
-            simd::gather_block_bands_i8(block_row, columns, kBlock, band_rows, pitch, band, band_stride);
-        else if (band_rows == kBlock)
-            gather(kBlock);  // a constant count: the row loop unrolls
+            simd::gather_block_bands_i8(block_row, r0, columns, kBlock, band_rows, pitch, band, band_stride);
+        else if (band_rows == kBandRows)
+            gather(kBandRows);  // a constant count: the row loop unrolls
         else
             gather(band_rows);
         for (int l = 0; l < band_rows; l++) {
             Table* g = band + l * band_stride;
             std::fill(g + zero_from, g + grain_width + 2, Table(0));
-            const int y = y_top + yi * kBlock + l;
+            const int y = y_top + l0 + l;
             if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1)
                 simd::deblock_blend_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
             else if constexpr (sizeof(Pixel) == 1)
@@ -352,8 +354,8 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
             grow(s.blocks, std::size_t(blocks_x) * 4);
             grow(s.narrow_blocks, std::size_t(blocks_x) * 4);
             grow(s.places, std::size_t(blocks_x) * 2);
-            // one block row of grain: block_size rows of the stripe's width, 3 columns of padding
-            const std::size_t band = std::size_t(blocks_x * rb + 3) * std::size_t(block_size_);
+            // kBandRows rows of the stripe's width, 3 columns of padding
+            const std::size_t band = std::size_t(blocks_x * rb + 3) * std::size_t(kBandRows);
             if (any_narrow) grow(s.narrow_band, band);
             if (any_wide) grow(s.band, band);
             if (!all_tables) {

@@ -55,6 +55,8 @@ public:
     std::size_t scratch_bytes() const;
 
 private:
+    // Grain rows the optimized stripe gathers before blending them (at most a block's rows)
+    static constexpr int kBandRows = 8;
     // One thread's stripe buffers, grown on the calling thread in apply() and reused.
     struct Scratch {
         std::vector<int32_t> stripe;          // reference path

@@ -79,14 +79,16 @@ TEST_P(FgcSimdEquivalence, GatherBlockBands) {
     for (int iter = 0; iter < 500; iter++) {
         const int bs = 8 << uniform(0, 2), count = uniform(1, 40), rows = uniform(1, bs);
         const std::ptrdiff_t pitch = uniform(0, 1) ? 64 : bs, stride = count * bs + uniform(0, 5);
+        const std::ptrdiff_t offset = pitch * uniform(0, 8);
         std::vector<const int8_t*> blocks;
         for (int j = 0; j < count; j++)
-            blocks.push_back(table.data() + uniform(0, int(table.size()) - int(pitch) * (rows - 1) - bs));
+            blocks.push_back(table.data() + uniform(0, int(table.size() - offset) - int(pitch) * (rows - 1) - bs));
         std::vector<int8_t> want(std::size_t(stride) * rows + 1, 0x5A), got(want);
         for (int j = 0; j < count; j++)
             for (int r = 0; r < rows; r++)
-                for (int k = 0; k < bs; k++) want[std::size_t(r * stride + j * bs + k)] = blocks[j][r * pitch + k];
-        fgc::simd::gather_block_bands_i8(blocks.data(), count, bs, rows, pitch, got.data(), stride);
+                for (int k = 0; k < bs; k++)
+                    want[std::size_t(r * stride + j * bs + k)] = blocks[j][offset + r * pitch + k];
+        fgc::simd::gather_block_bands_i8(blocks.data(), offset, count, bs, rows, pitch, got.data(), stride);
         ASSERT_EQ(got, want) << "iteration " << iter << " bs " << bs << " count " << count << " rows " << rows;
     }
 }

@@ -36,11 +36,11 @@ void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* gra
 void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
                               int bit_depth);
 
-// The grain of one block row of the stripe: for each of `count` blocks, `rows` rows of
-// `block` values (8, 16 or 32) that lie `pitch` apart from blocks[j], copied to
+// Rows of one block row of the stripe: for each of `count` blocks, `rows` rows of `block`
+// values (8, 16 or 32) that lie `pitch` apart from blocks[j] + offset, copied to
 // out + j * block, rows `out_stride` apart. Twin of the element-wise copy.
-void gather_block_bands_i8(const int8_t* const* blocks, int count, int block, int rows, std::ptrdiff_t pitch,
-                           int8_t* out, std::ptrdiff_t out_stride);
+void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, int count, int block, int rows,
+                           std::ptrdiff_t pitch, int8_t* out, std::ptrdiff_t out_stride);
 
 // Sums of `rows` x `block` sample blocks for the `width / block` whole blocks that start
 // at x = 0, block, 2*block, ... (block 8, 16 or 32; rows 1..32): the integer sums the local

@@ -284,18 +284,20 @@ void DeblockBlendRowU16I8(const uint16_t* src, uint16_t* dst, const int8_t* grai
 }
 
 // Whole-vector stores instead of one 8-byte move per block row: 8-sample blocks are joined
-// two (four with 256-bit vectors) per vector. Wider blocks are copied row by row already.
-void GatherBlockBandsI8(const int8_t* const* blocks, int count, int block, int rows, std::ptrdiff_t pitch,
-                        int8_t* out, std::ptrdiff_t out_stride) {
+// two (four with 256-bit vectors) per vector; wider blocks are moved 16 bytes at a time
+// (a byte count known only at run time would otherwise be a memcpy call per block row).
+void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int count, int block, int rows,
+                        std::ptrdiff_t pitch, int8_t* out, std::ptrdiff_t out_stride) {
     int j = 0;
 #if HWY_TARGET != HWY_SCALAR
+    const hn::Full64<int8_t> d8;
+    const hn::Full128<int8_t> d16;
     if (block == 8) {
-        const hn::Full64<int8_t> d8;
-        const hn::Full128<int8_t> d16;
 #if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
         const hn::Full256<int8_t> d32;
         for (; j + 4 <= count; j += 4) {
-            const int8_t *p0 = blocks[j], *p1 = blocks[j + 1], *p2 = blocks[j + 2], *p3 = blocks[j + 3];
+            const int8_t *p0 = blocks[j] + offset, *p1 = blocks[j + 1] + offset, *p2 = blocks[j + 2] + offset,
+                         *p3 = blocks[j + 3] + offset;
             int8_t* o = out + j * 8;
             for (int r = 0; r < rows; r++, p0 += pitch, p1 += pitch, p2 += pitch, p3 += pitch, o += out_stride) {
                 const auto lo = hn::Combine(d16, hn::LoadU(d8, p1), hn::LoadU(d8, p0));
@@ -305,15 +307,23 @@ void GatherBlockBandsI8(const int8_t* const* blocks, int count, int block, int r
         }
 #endif
         for (; j + 2 <= count; j += 2) {
-            const int8_t *p0 = blocks[j], *p1 = blocks[j + 1];
+            const int8_t *p0 = blocks[j] + offset, *p1 = blocks[j + 1] + offset;
             int8_t* o = out + j * 8;
             for (int r = 0; r < rows; r++, p0 += pitch, p1 += pitch, o += out_stride)
                 hn::StoreU(hn::Combine(d16, hn::LoadU(d8, p1), hn::LoadU(d8, p0)), d16, o);
         }
+    } else {
+        for (; j < count; j++) {
+            const int8_t* p = blocks[j] + offset;
+            int8_t* o = out + j * block;
+            for (int r = 0; r < rows; r++, p += pitch, o += out_stride)
+                for (int k = 0; k < block; k += 16) hn::StoreU(hn::LoadU(d16, p + k), d16, o + k);
+        }
     }
 #endif
     for (; j < count; j++)
-        for (int r = 0; r < rows; r++) std::memcpy(out + r * out_stride + j * block, blocks[j] + r * pitch, std::size_t(block));
+        for (int r = 0; r < rows; r++)
+            std::memcpy(out + r * out_stride + j * block, blocks[j] + offset + r * pitch, std::size_t(block));
 }
 
 void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
@@ -399,9 +409,9 @@ void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* 
                               int bit_depth) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16I8)(src, dst, grain, width, block_size, bit_depth);
 }
-void gather_block_bands_i8(const int8_t* const* blocks, int count, int block, int rows, std::ptrdiff_t pitch,
-                           int8_t* out, std::ptrdiff_t out_stride) {
-    HWY_DYNAMIC_DISPATCH(GatherBlockBandsI8)(blocks, count, block, rows, pitch, out, out_stride);
+void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, int count, int block, int rows,
+                           std::ptrdiff_t pitch, int8_t* out, std::ptrdiff_t out_stride) {
+    HWY_DYNAMIC_DISPATCH(GatherBlockBandsI8)(blocks, offset, count, block, rows, pitch, out, out_stride);
 }
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);
