@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "core/frame_buffer.hpp"
@@ -130,6 +131,22 @@ TEST(FgcRandomization, SeedsUseColourOffsetsAndWrap) {
     ASSERT_EQ(st.size(), 6u);
     EXPECT_EQ(st[0], 77u);
     EXPECT_EQ(st[5], lfsr_next(lfsr_next(lfsr_next(lfsr_next(lfsr_next(77u))))));
+}
+
+// fill_block_states takes three LFSR steps at a time: every state must still be the
+// one-step chain's, for any count (remainders 0, 1, 2) and seeds with the high bits set.
+TEST(FgcRandomization, BlockStatesFollowTheOneStepChain) {
+    std::mt19937 rng(7);
+    for (int iter = 0; iter < 300; iter++) {
+        const uint32_t seed = iter == 0 ? 0u : iter == 1 ? 0xFFFFFFFFu : uint32_t(rng());
+        const int bx = 1 + int(rng() % 40), by = 1 + int(rng() % 5);
+        std::vector<uint32_t> st;
+        fill_block_states(seed, bx, by, st);
+        ASSERT_EQ(st.size(), std::size_t(bx * by));
+        uint32_t s = seed;
+        for (std::size_t i = 0; i < st.size(); i++, s = lfsr_next(s)) ASSERT_EQ(st[i], s) << "seed " << seed << " i " << i;
+        EXPECT_EQ(lfsr_next3(seed), lfsr_next(lfsr_next(lfsr_next(seed))));
+    }
 }
 
 TEST(FgcAdaptation, AveragesInsideAndReplicated) {
