@@ -122,10 +122,11 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
 // give each block its interval; a block's grain is then a pointer into that interval's
 // scaled template (ScaledTemplates: the reference's per-sample products, made once per
 // parameter set), or into stripe scratch scaled block by block when the component has too
-// many intervals for tables. Row by row, the blocks' rows are copied into one grain row of
-// a few KiB, which the fused deblocking + blending kernel adds to the picture: the grain of
-// a whole stripe is never written out. Blocks that touch the picture's right or bottom
-// edge take their averages from the reference functions.
+// many intervals for tables. Eight rows at a time, the blocks' rows are copied into a band
+// of grain rows (int8 when the tables are: 8-bit grain always fits), which the fused
+// deblocking + blending kernel adds to the picture row by row: the grain of a whole stripe
+// is never written out. Blocks that touch the picture's right or bottom edge take their
+// averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
 template <typename Table>
 alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};

@@ -1,9 +1,10 @@
 // Optimized twins of the FGC per-stripe stages (Highway, runtime dispatch over the targets
 // the CPU supports). Each is bit-equal to the scalar stages named beside it; the
-// equivalence test (tests/unit/simd_equivalence_test.cpp) checks that on random input for
-// every target. The optimized stripe holds grain as int16, which is exact: a grain value
-// is at most (255 << (bd - 8)) * 127 >> (log2_scale_factor + 6) <= 32385 in magnitude
-// (log2_scale_factor >= 2 whenever grain is synthesized).
+// equivalence tests (tests/unit/simd_equivalence_test.cpp, fgc_simd_equivalence_test.cpp)
+// check that on random input for every target. The optimized stripe holds grain as int16,
+// which is exact: a grain value is at most (255 << (bd - 8)) * 127 >> (log2_scale_factor +
+// 6) <= 32385 in magnitude (log2_scale_factor >= 2 whenever grain is synthesized), or as
+// int8 when every value of a component's scaled tables fits (always at 8 bits: <= 126).
 #pragma once
 #include <cstddef>
 #include <cstdint>
