@@ -2,6 +2,7 @@
 // process-wide pool), so contexts stay independent. The calling thread works too, so a pool
 // of size 1 starts no thread at all and runs everything inline.
 #pragma once
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -44,9 +45,11 @@ private:
     std::vector<std::thread> workers_;
     std::mutex mutex_;
     std::condition_variable start_cv_, done_cv_;
-    uint64_t generation_ = 0;
-    bool stopping_ = false;
-    int busy_ = 0;
+    // Written under mutex_; atomic so that a thread may also poll them without it for a
+    // short while before sleeping (see worker_loop and run).
+    std::atomic<uint64_t> generation_{0};
+    std::atomic<bool> stopping_{false};
+    std::atomic<int> busy_{0};
     // the job in flight
     Trampoline call_ = nullptr;
     void* ctx_ = nullptr;
