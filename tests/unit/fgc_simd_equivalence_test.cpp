@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/simd_targets.hpp"
+#include "forced_simd_target.hpp"
 #include "fgc/blending.hpp"
 #include "fgc/deblocking.hpp"
 #include "fgc/simd/fgc_kernels.hpp"
@@ -16,16 +17,7 @@ using namespace filmgrain;
 
 namespace {
 
-class FgcSimdEquivalence : public ::testing::TestWithParam<simd::Target> {
-protected:
-    void SetUp() override {
-        ASSERT_TRUE(simd::force_target(GetParam().bits));
-        ASSERT_EQ(simd::dispatched_target(), GetParam().name) << "dispatch did not follow the forced target";
-    }
-    void TearDown() override { simd::force_target(0); }
-    std::mt19937 rng{20261124u ^ uint32_t(GetParam().bits)};
-    int uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
-};
+class FgcSimdEquivalence : public test_support::ForcedSimdTarget<20261124u> {};
 
 // One grain row as the optimized stripe holds it: element 0 is the readable element before
 // column 0 (random: the kernels must not use it), then width + 1 grain values.

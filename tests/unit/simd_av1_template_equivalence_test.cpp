@@ -13,21 +13,13 @@
 #include "av1/grain_template_generation.hpp"
 #include "av1/grain_template_optimized.hpp"
 #include "core/simd_targets.hpp"
+#include "forced_simd_target.hpp"
 
 using namespace filmgrain;
 
 namespace {
 
-class SimdAv1TemplateEquivalence : public ::testing::TestWithParam<simd::Target> {
-protected:
-    void SetUp() override {
-        ASSERT_TRUE(simd::force_target(GetParam().bits));
-        ASSERT_EQ(simd::dispatched_target(), GetParam().name) << "dispatch did not follow the forced target";
-    }
-    void TearDown() override { simd::force_target(0); }
-    std::mt19937 rng{20261123u ^ uint32_t(GetParam().bits)};
-    int uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
-};
+class SimdAv1TemplateEquivalence : public test_support::ForcedSimdTarget<20261123u> {};
 
 // First differing sample, or "" when the templates are equal.
 std::string diff(const av1::GrainTemplate& got, const av1::GrainTemplate& want) {

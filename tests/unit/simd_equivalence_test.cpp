@@ -15,6 +15,7 @@
 #include "av1/stripe_block_origins.hpp"
 #include "av1/simd/av1_kernels.hpp"
 #include "core/simd_targets.hpp"
+#include "forced_simd_target.hpp"
 #include "fgc/blending.hpp"
 #include "fgc/deblocking.hpp"
 #include "fgc/fgc_synthesizer.hpp"
@@ -26,16 +27,7 @@ using namespace filmgrain;
 
 namespace {
 
-class SimdEquivalence : public ::testing::TestWithParam<simd::Target> {
-protected:
-    void SetUp() override {
-        ASSERT_TRUE(simd::force_target(GetParam().bits));
-        ASSERT_EQ(simd::dispatched_target(), GetParam().name) << "dispatch did not follow the forced target";
-    }
-    void TearDown() override { simd::force_target(0); }
-    std::mt19937 rng{20261122u ^ uint32_t(GetParam().bits)};
-    int uniform(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
-};
+class SimdEquivalence : public test_support::ForcedSimdTarget<20261122u> {};
 
 // A frame with its own row padding, optionally stored bottom-up (negative stride).
 struct StridedFrame {
