@@ -79,9 +79,11 @@ FrameView FrameBuffer::view() {
 
 void copy_frame(const FrameView& src, const FrameView& dst) {
     for (int p = 0; p < src.plane_count(); p++) {
+        // A synthesizer called in place (src == dst) copies nothing.
+        if (src.planes[p].data == dst.planes[p].data && src.planes[p].stride == dst.planes[p].stride) continue;
         const std::size_t row_bytes = std::size_t(plane_width(src.format, p, src.width)) * src.bytes_per_sample();
         for (int y = 0; y < plane_height(src.format, p, src.height); y++)
-            std::memcpy(dst.planes[p].row<uint8_t>(y), src.planes[p].row<const uint8_t>(y), row_bytes);
+            std::memmove(dst.planes[p].row<uint8_t>(y), src.planes[p].row<const uint8_t>(y), row_bytes);
     }
 }
 

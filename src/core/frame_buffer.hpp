@@ -44,7 +44,8 @@ private:
     std::size_t offsets_[3] = {0, 0, 0};
 };
 
-// Copies every plane of src into dst (same format and size, any strides).
+// Copies every plane of src into dst (same format and size, any strides; nothing when they
+// are the same planes).
 void copy_frame(const FrameView& src, const FrameView& dst);
 
 }  // namespace filmgrain

@@ -1,5 +1,6 @@
 #include "fgc/fgc_synthesizer.hpp"
 
+#include "core/frame_buffer.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain {
@@ -95,10 +96,6 @@ bool same_sei(const FgcParams& a, const FgcParams& b) {
 bool persists_beyond_picture(const FgcParams& p, FgcCodec codec) {
     if (codec == FgcCodec::kAvc) return p.film_grain_characteristics_repetition_period != 0;
     return p.film_grain_characteristics_persistence_flag;
-}
-
-void copy_frame(const FrameView& src, const FrameView& dst) {
-    for (int c = 0; c < src.plane_count(); c++) fgc::copy_plane(src.planes[c], dst.planes[c], src.bytes_per_sample());
 }
 
 void check_frame(const FrameView& src, const FrameView& dst) {
