@@ -25,6 +25,15 @@ struct FadeConstants {
     hn::Vec<D16> w_old, w_new, gmin, gmax;
 };
 
+HWY_INLINE FadeConstants FadeConstantsOf(const BlockNoiseRow& row) {
+    const D16 d16;
+    const hn::Repartition<uint32_t, D16> d32;
+    auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
+    return {hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1]))),
+            hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))), hn::Set(d16, row.gmin),
+            hn::Set(d16, row.gmax)};
+}
+
 // The first vector of block b's noise: its first two lanes replaced by the horizontal overlap
 // with the left block (7.18.3.5), given as seams or faded here. At least two lanes.
 HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own,
@@ -49,16 +58,12 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     const D16 d16;
     const hn::Rebind<Pixel, D16> dp;
     const hn::RebindToUnsigned<D16> du16;
-    const hn::Repartition<uint32_t, D16> d32;
     const int n = int(hn::Lanes(d16));
     // A local copy: byte stores to dst could alias the caller's struct, which would make the
     // compiler reload its members after every store.
     const BlockNoiseRow row = noise_row;
     const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
-    auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
-    const FadeConstants fade{hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1]))),
-                             hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))),
-                             hn::Set(d16, row.gmin), hn::Set(d16, row.gmax)};
+    const FadeConstants fade = FadeConstantsOf(row);
     const bool overlapped = row.seams || row.fade;
     auto blend = [&](int k, hn::Vec<D16> noise) {
         const auto add = hn::MulFixedPoint15(scale_at(k), noise);
@@ -451,13 +456,9 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
 // cross-faded before use), block by block as AddBlockNoise reads it.
 void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
     const D16 d16;
-    const hn::Repartition<uint32_t, D16> d32;
     const int n = int(hn::Lanes(d16));
     const BlockNoiseRow row = noise_row;  // local: the int16 stores cannot alias it
-    auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
-    const FadeConstants fade{hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1]))),
-                             hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))),
-                             hn::Set(d16, row.gmin), hn::Set(d16, row.gmax)};
+    const FadeConstants fade = FadeConstantsOf(row);
     const int vec_end = n >= 2 ? width / n * n : 0;
     const int bw = row.block_width;
     for (int x = 0, b = 0; x < vec_end; x += bw, ++b) {
