@@ -38,19 +38,6 @@ double template_std(const av1::GrainTemplate& t) {
     return std::sqrt(std::max(0.0, ss / n - m * m));
 }
 
-void fill_mid_grey(FrameBuffer& fb) {
-    FrameView v = fb.view();
-    const int mid = 128 << (v.bit_depth - 8);
-    for (int p = 0; p < v.plane_count(); p++)
-        for (int y = 0; y < v.planes[p].height; y++)
-            for (int x = 0; x < v.planes[p].width; x++) {
-                if (v.bit_depth > 8)
-                    v.planes[p].row<uint16_t>(y)[x] = uint16_t(mid);
-                else
-                    v.planes[p].row<uint8_t>(y)[x] = uint8_t(mid);
-            }
-}
-
 // Quantizes real coefficients with the finest shift (6..9) that keeps them in -128..127.
 int choose_ar_shift(const std::array<std::vector<double>, 3>& coeffs) {
     double peak = 0;
@@ -158,7 +145,7 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
     const int ssx = chroma_shift_x(target.chroma), ssy = chroma_shift_y(target.chroma);
     (void)ssx, (void)ssy;
     FrameBuffer clean(kCalibrationSize, kCalibrationSize, {target.chroma, target.bit_depth}), grainy;
-    fill_mid_grey(clean);
+    fill_frame(clean.view(), 128 << (clean.format().bit_depth - 8));
     grainy = clean;
     std::array<double, 3> gain{};
     for (int s = 0; s < kCalibrationSeeds; s++) {

@@ -15,25 +15,12 @@ namespace {
 constexpr int kCalibrationSize = 256;
 constexpr int kMinDctBlocksPerInterval = 8;
 
-void fill_mid_grey(FrameBuffer& fb) {
-    FrameView v = fb.view();
-    const int mid = 128 << (v.bit_depth - 8);
-    for (int p = 0; p < v.plane_count(); p++)
-        for (int y = 0; y < v.planes[p].height; y++)
-            for (int x = 0; x < v.planes[p].width; x++) {
-                if (v.bit_depth > 8)
-                    v.planes[p].row<uint16_t>(y)[x] = uint16_t(mid);
-                else
-                    v.planes[p].row<uint8_t>(y)[x] = uint8_t(mid);
-            }
-}
-
 // Grain level per unit of comp_model_value[0] for one component, cut-off pair and scale
 // factor, measured on a flat mid-grey picture synthesized by the target flavour.
 class FgcCalibration {
 public:
     explicit FgcCalibration(const FgcTarget& t) : t_(t), clean_(kCalibrationSize, kCalibrationSize, {t.chroma, t.bit_depth}) {
-        fill_mid_grey(clean_);
+        fill_frame(clean_.view(), 128 << (clean_.format().bit_depth - 8));
         grainy_ = FrameBuffer(kCalibrationSize, kCalibrationSize, {t.chroma, t.bit_depth});
     }
     double gain(int c, int h, int v, int lsf, int value) {

@@ -95,49 +95,49 @@ std::size_t StripeScratch::bytes() const {
 
 int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
 
+template <typename Pixel, typename Blend>
+void Av1SynthesisContext::for_each_stripe_plane(const FrameView& src, const FrameView& dst, int stripe,
+                                                Blend&& blend) const {
+    const int luma_y0 = stripe * kBlockSize;
+    const int luma_rows = std::min(kBlockSize, height_ - luma_y0);
+    // Chroma first: it reads the clean luma of this stripe, which must not yet have been
+    // overwritten when dst aliases src.
+    const int planes = num_planes(format_);
+    for (int n = 1; n <= planes; ++n) {
+        const int pl = n % planes;  // 1, 2, then 0
+        const int sy = pl ? suby_ : 0;
+        const int pw = plane_width(format_, pl, width_);
+        const int ph = plane_height(format_, pl, height_);
+        const int y0 = luma_y0 >> sy;
+        const int rows = std::min((luma_rows + sy) >> sy, ph - y0);
+        if (!has_grain_[pl])
+            copy_rows_without_grain<Pixel>(src.planes[pl], dst.planes[pl], y0, rows, pw);
+        else if (rows > 0)
+            blend(pl, y0, rows, pw, ph);
+    }
+}
+
 template <typename Pixel>
 void Av1SynthesisContext::apply_stripe(const FrameView& src, const FrameView& dst, int stripe) const {
     const int scaling_shift = p_.grain_scaling_minus_8 + 8;
     const bool overlap = p_.overlap_flag != 0;
-    const int luma_y0 = stripe * kBlockSize;
-    const int luma_rows = std::min(kBlockSize, height_ - luma_y0);
-
-    // Chroma first: it reads the clean luma of this stripe, which must not yet
-    // have been overwritten when dst aliases src.
-    for (int pl = 1; pl < num_planes(format_); ++pl) {
-        const int pw = plane_width(format_, pl, width_);
-        const int ph = plane_height(format_, pl, height_);
-        const int y0 = luma_y0 >> suby_;
-        const int rows = std::min((luma_rows + suby_) >> suby_, ph - y0);
+    for_each_stripe_plane<Pixel>(src, dst, stripe, [&](int pl, int y0, int rows, int pw, int ph) {
         const PlaneView& s = src.planes[pl];
         const PlaneView& d = dst.planes[pl];
-        if (!has_grain_[pl]) {
-            copy_rows_without_grain<Pixel>(s, d, y0, rows, pw);
-            continue;
-        }
+        const int sx = pl ? subx_ : 0, sy = pl ? suby_ : 0;
         const StripeNoise noise =
-            build_stripe_noise(templates_[pl], p_.grain_seed, stripe, width_, pw, ph, subx_, suby_, overlap, bit_depth_);
+            build_stripe_noise(templates_[pl], p_.grain_seed, stripe, width_, pw, ph, sx, sy, overlap, bit_depth_);
         for (int i = 0; i < rows; ++i) {
             const int y = y0 + i;
-            blend_chroma_row<Pixel>(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_), width_,
-                                    noise.row(i), pw, subx_, chroma_index_[pl], scaling_[pl], scaling_shift,
-                                    bit_depth_, clip_.min_value, clip_.max_chroma);
+            if (pl)
+                blend_chroma_row<Pixel>(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
+                                        width_, noise.row(i), pw, subx_, chroma_index_[pl], scaling_[pl],
+                                        scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
+            else
+                blend_luma_row<Pixel>(s.row<Pixel>(y), d.row<Pixel>(y), noise.row(i), width_, scaling_[0],
+                                      scaling_shift, clip_.min_value, clip_.max_luma);
         }
-    }
-
-    const PlaneView& s = src.planes[0];
-    const PlaneView& d = dst.planes[0];
-    if (!has_grain_[0]) {
-        copy_rows_without_grain<Pixel>(s, d, luma_y0, luma_rows, width_);
-        return;
-    }
-    const StripeNoise noise =
-        build_stripe_noise(templates_[0], p_.grain_seed, stripe, width_, width_, height_, 0, 0, overlap, bit_depth_);
-    for (int i = 0; i < luma_rows; ++i) {
-        const int y = luma_y0 + i;
-        blend_luma_row<Pixel>(s.row<Pixel>(y), d.row<Pixel>(y), noise.row(i), width_, scaling_[0], scaling_shift,
-                              clip_.min_value, clip_.max_luma);
-    }
+    });
 }
 
 template <typename Pixel>
@@ -145,8 +145,6 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                                  StripeScratch& scratch) const {
     const int scaling_shift = p_.grain_scaling_minus_8 + 8;
     const bool overlap = p_.overlap_flag != 0;
-    const int luma_y0 = stripe * kBlockSize;
-    const int luma_rows = std::min(kBlockSize, height_ - luma_y0);
     const int gmin = -(128 << (bit_depth_ - 8)), gmax = (128 << (bit_depth_ - 8)) - 1;
     const int blocks = num_blocks_across(width_);
     scratch.reserve(width_);
@@ -212,19 +210,23 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         }
     };
 
-    // Chroma first: it reads the clean luma of this stripe (in-place safety, as above).
-    for (int pl = 1; pl < num_planes(format_); ++pl) {
-        const int pw = plane_width(format_, pl, width_);
-        const int ph = plane_height(format_, pl, height_);
-        const int y0 = luma_y0 >> suby_;
-        const int rows = std::min((luma_rows + suby_) >> suby_, ph - y0);
+    for_each_stripe_plane<Pixel>(src, dst, stripe, [&](int pl, int y0, int rows, int pw, int) {
         const PlaneView& s = src.planes[pl];
         const PlaneView& d = dst.planes[pl];
-        if (!has_grain_[pl]) {
-            copy_rows_without_grain<Pixel>(s, d, y0, rows, pw);
-            continue;
+        if (pl == 0) {
+            blend_plane(0, 0, 0, rows, [&](int i, const simd::BlockNoiseRow& nz) {
+                const int y = y0 + i;
+                if constexpr (sizeof(Pixel) == 1)
+                    simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
+                                            scaling_[0].table8().data(), scaling_shift, clip_.min_value,
+                                            clip_.max_luma);
+                else
+                    simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
+                                             scaling_[0].table8().data(), scaling_shift, bit_depth_,
+                                             clip_.min_value, clip_.max_luma);
+            });
+            return;
         }
-        if (rows <= 0) continue;
         blend_plane(pl, subx_, suby_, rows, [&](int i, const simd::BlockNoiseRow& nz) {
             const int y = y0 + i;
             if constexpr (sizeof(Pixel) == 1)
@@ -236,22 +238,6 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                            width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl].table8().data(),
                                            scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
         });
-    }
-
-    const PlaneView& s = src.planes[0];
-    const PlaneView& d = dst.planes[0];
-    if (!has_grain_[0]) {
-        copy_rows_without_grain<Pixel>(s, d, luma_y0, luma_rows, width_);
-        return;
-    }
-    blend_plane(0, 0, 0, luma_rows, [&](int i, const simd::BlockNoiseRow& nz) {
-        const int y = luma_y0 + i;
-        if constexpr (sizeof(Pixel) == 1)
-            simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(),
-                                    scaling_shift, clip_.min_value, clip_.max_luma);
-        else
-            simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_, scaling_[0].table8().data(),
-                                     scaling_shift, bit_depth_, clip_.min_value, clip_.max_luma);
     });
 }
 

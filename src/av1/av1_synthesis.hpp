@@ -78,6 +78,11 @@ private:
     void apply_stripe(const FrameView& src, const FrameView& dst, int stripe) const;
     template <typename Pixel>
     void apply_stripe_optimized(const FrameView& src, const FrameView& dst, int stripe, StripeScratch& scratch) const;
+    // The planes of a stripe in the order both paths process them, with the rows of each the
+    // stripe covers; planes without grain are copied here, the others handed to
+    // blend(plane, first_row, rows, plane_width, plane_height).
+    template <typename Pixel, typename Blend>
+    void for_each_stripe_plane(const FrameView& src, const FrameView& dst, int stripe, Blend&& blend) const;
 
     Av1FilmGrainParams p_;
     ChromaFormat format_ = ChromaFormat::k420;

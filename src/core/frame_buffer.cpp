@@ -1,5 +1,6 @@
 #include "core/frame_buffer.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "filmgrain/error.hpp"
@@ -85,6 +86,16 @@ void copy_frame(const FrameView& src, const FrameView& dst) {
         for (int y = 0; y < plane_height(src.format, p, src.height); y++)
             std::memmove(dst.planes[p].row<uint8_t>(y), src.planes[p].row<const uint8_t>(y), row_bytes);
     }
+}
+
+void fill_frame(const FrameView& dst, int value) {
+    for (int p = 0; p < dst.plane_count(); p++)
+        for (int y = 0; y < dst.planes[p].height; y++) {
+            if (dst.bit_depth > 8)
+                std::fill_n(dst.planes[p].row<uint16_t>(y), dst.planes[p].width, uint16_t(value));
+            else
+                std::fill_n(dst.planes[p].row<uint8_t>(y), dst.planes[p].width, uint8_t(value));
+        }
 }
 
 }  // namespace filmgrain

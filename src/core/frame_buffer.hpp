@@ -48,4 +48,8 @@ private:
 // are the same planes).
 void copy_frame(const FrameView& src, const FrameView& dst);
 
+// Sets every sample of every plane of dst to `value` (a flat picture, e.g. the mid-grey one
+// grain is calibrated on).
+void fill_frame(const FrameView& dst, int value);
+
 }  // namespace filmgrain
