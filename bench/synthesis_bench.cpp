@@ -8,11 +8,11 @@
 //   FILMGRAIN_SIMD_TARGET=SSE4 build/filmgrain_bench   # force a vector target
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
 #include <cstring>
-#include <random>
 
+#include "bench_main.hpp"
 #include "bench_params.hpp"
+#include "bench_pictures.hpp"
 #include "av1/av1_synthesis.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
@@ -21,27 +21,6 @@
 using namespace filmgrain;
 
 namespace {
-
-FrameBuffer picture(int w, int h, int bd) {
-    FrameBuffer b(w, h, PixelFormat{ChromaFormat::k420, bd});
-    std::mt19937 rng(1);
-    FrameView v = b.view();
-    // a ramp with noise and a random level per 8x8 block, so that neighbouring blocks land
-    // in different intensity intervals, as in pictures with detail (a smooth ramp alone
-    // would let whole rows of blocks share one interval's template)
-    for (int p = 0; p < v.plane_count(); p++)
-        for (int y = 0; y < v.planes[p].height; y++)
-            for (int x = 0; x < v.planes[p].width; x++) {
-                const uint32_t block_level = ((uint32_t(x / 8) * 2654435761u) ^ (uint32_t(y / 8) * 40503u)) >> 25;
-                const int value = ((x + y) * 255 / (v.planes[p].width + v.planes[p].height) + int(block_level) +
-                                   int(rng() % 16)) & 255;
-                if (bd > 8)
-                    v.planes[p].row<uint16_t>(y)[x] = uint16_t(value << (bd - 8));
-                else
-                    v.planes[p].row<uint8_t>(y)[x] = uint8_t(value);
-            }
-    return b;
-}
 
 // The FGC SEI tools/bench-compare inserts into its HEVC stream: luma in three intensity
 // intervals, each chroma component in one (model values scaled to the bit depth).
@@ -71,7 +50,7 @@ void BM_Fgc(benchmark::State& state) {
     o.flavour = state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
     FgcSynthesizer s(o);
     s.receive_sei(fgc_params(bd));
-    FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
+    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     int poc = 0;
     for (auto _ : state) {
         s.apply(in.view(), out.view(), FgcPictureIds{poc++ & 255, 0});
@@ -85,7 +64,7 @@ void BM_Av1(benchmark::State& state) {
     const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
     av1::Av1Synthesizer s(int(state.range(3)), state.range(4) ? av1::Kernels::kOptimized : av1::Kernels::kReference);
     Av1FilmGrainParams p = bench::av1_params();
-    FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
+    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     for (auto _ : state) {
         p.grain_seed = (p.grain_seed + 7391) & 0xFFFF;  // encoders change the seed every frame
         s.apply(p, in.view(), out.view(), 1);
@@ -98,7 +77,7 @@ void BM_Av1(benchmark::State& state) {
 // that hands out a separate output frame pays at least, grain or not.
 void BM_FrameCopy(benchmark::State& state) {
     const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    FrameBuffer in = picture(w, h, bd), out(w, h, in.format());
+    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     const FrameView s = in.view(), d = out.view();
     for (auto _ : state) {
         for (int p = 0; p < s.plane_count(); p++)
@@ -139,16 +118,4 @@ BENCHMARK(BM_FrameCopy)
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    if (const char* t = std::getenv("FILMGRAIN_SIMD_TARGET"))
-        if (!simd::force_target(std::string(t))) {
-            std::fprintf(stderr, "FILMGRAIN_SIMD_TARGET=%s is not available on this CPU\n", t);
-            return 2;
-        }
-    benchmark::AddCustomContext("simd_target", simd::dispatched_target());
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
-}
+int main(int argc, char** argv) { return bench::run_benchmarks(argc, argv); }

@@ -7,9 +7,7 @@
 //   FILMGRAIN_SIMD_TARGET=SSE4 build/filmgrain_template_bench   # force a vector target
 #include <benchmark/benchmark.h>
 
-#include <cstdio>
-#include <cstdlib>
-
+#include "bench_main.hpp"
 #include "bench_params.hpp"
 #include "av1/grain_template_generation.hpp"
 #include "av1/grain_template_optimized.hpp"
@@ -52,14 +50,4 @@ BENCHMARK(BM_Av1Templates)
 
 }  // namespace
 
-int main(int argc, char** argv) {
-    if (const char* t = std::getenv("FILMGRAIN_SIMD_TARGET"); t && !simd::force_target(std::string(t))) {
-        std::fprintf(stderr, "FILMGRAIN_SIMD_TARGET=%s is not available on this CPU\n", t);
-        return 2;
-    }
-    benchmark::Initialize(&argc, argv);
-    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-    benchmark::RunSpecifiedBenchmarks();
-    benchmark::Shutdown();
-    return 0;
-}
+int main(int argc, char** argv) { return bench::run_benchmarks(argc, argv); }
