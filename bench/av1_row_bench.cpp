@@ -80,18 +80,18 @@ void BM_Av1Rows(benchmark::State& state) {
                 rows[std::size_t(b)] = origins.starts[std::size_t(stripe * origins.blocks + b)] + i * t.width;
             if (bd == 8 && !chroma)
                 av1::simd::blend_luma_row_u8(src.planes[0].row<uint8_t>(y), dst.planes[0].row<uint8_t>(y), row, pw,
-                                             scaling.table8().data(), shift, 0, max_value);
+                                             scaling, shift, 0, max_value);
             else if (!chroma)
                 av1::simd::blend_luma_row_u16(src.planes[0].row<uint16_t>(y), dst.planes[0].row<uint16_t>(y), row, pw,
-                                              scaling.table8().data(), shift, bd, 0, max_value);
+                                              scaling, shift, bd, 0, max_value);
             else if (bd == 8)
                 av1::simd::blend_chroma_row_u8(src.planes[1].row<uint8_t>(y), dst.planes[1].row<uint8_t>(y),
                                                src.planes[0].row<uint8_t>(2 * y), kWidth, row, pw, 1, index,
-                                               scaling.table8().data(), shift, bd, 0, max_value);
+                                               scaling, shift, bd, 0, max_value);
             else
                 av1::simd::blend_chroma_row_u16(src.planes[1].row<uint16_t>(y), dst.planes[1].row<uint16_t>(y),
                                                 src.planes[0].row<uint16_t>(2 * y), kWidth, row, pw, 1, index,
-                                                scaling.table8().data(), shift, bd, 0, max_value);
+                                                scaling, shift, bd, 0, max_value);
         }
         benchmark::DoNotOptimize(out.bytes());
         benchmark::ClobberMemory();

@@ -218,11 +218,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                 const int y = y0 + i;
                 if constexpr (sizeof(Pixel) == 1)
                     simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
-                                            scaling_[0].table8().data(), scaling_shift, clip_.min_value,
+                                            scaling_[0], scaling_shift, clip_.min_value,
                                             clip_.max_luma);
                 else
                     simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
-                                             scaling_[0].table8().data(), scaling_shift, bit_depth_,
+                                             scaling_[0], scaling_shift, bit_depth_,
                                              clip_.min_value, clip_.max_luma);
             });
             return;
@@ -231,11 +231,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             const int y = y0 + i;
             if constexpr (sizeof(Pixel) == 1)
                 simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                          width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl].table8().data(),
+                                          width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl],
                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
             else
                 simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl].table8().data(),
+                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl],
                                            scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
         });
     });
@@ -318,7 +318,7 @@ std::size_t Av1SynthesisContext::table_bytes() const {
     std::size_t n = 0;
     for (int pl = 0; pl < 3; ++pl)
         n += templates_[pl].samples.capacity() * sizeof(int16_t) +
-             scaling_[pl].table8().capacity() + (std::size_t(1) << bit_depth_);
+             scaling_[pl].table8().capacity() + (std::size_t(1) << bit_depth_) + 3 * 256;
     return n;
 }
 

@@ -47,6 +47,13 @@ void ScalingLookup::assign(const int* point_value, const int* point_scaling, int
         }
         full_[static_cast<std::size_t>(index)] = static_cast<uint8_t>(v);
     }
+
+    for (std::size_t i = 0; i < 256; ++i) next8_[i] = lut8_[i < 255 ? i + 1 : 255];
+    for (std::size_t i = 0; i < 256; ++i) {
+        const bool chained = (i >> 4) % 8 != 7;
+        lut8_chain_[i] = static_cast<uint8_t>(lut8_[i] ^ (chained ? lut8_[i + 16] : 0));
+        next8_chain_[i] = static_cast<uint8_t>(next8_[i] ^ (chained ? next8_[i + 16] : 0));
+    }
 }
 
 }  // namespace filmgrain::av1

@@ -1,6 +1,7 @@
 // Piecewise-linear scaling function of AV1 spec 7.18.3.4 / 7.18.3.5 (scale_lut).
 // It maps a sample intensity to the strength (0..255) of the grain added there.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,12 +22,25 @@ public:
 
     // The 256-entry 8-bit table (ScalingLut[plane] in the spec).
     const std::vector<uint8_t>& table8() const { return lut8_; }
+    // scale_lut over 0..(1 << bit_depth) - 1, one byte each.
+    const uint8_t* full_table() const { return full_.data(); }
+
+    // ScalingLut laid out for the optimized blends' 16-entry byte shuffles
+    // (simd/av1_kernels), made here once per parameter set rather than per row:
+    // next8(): ScalingLut[min(i + 1, 255)], the end point of scale_lut's interpolation above
+    // 8 bits; *_chain(): row j XOR row j + 1 for j % 8 != 7 (row j itself at 7 and 15), so
+    // that XOR-ing every row's shuffle by an index raised by 16 per row (zero once it
+    // saturates past 127) cancels all rows but the index's own.
+    const uint8_t* next8() const { return next8_.data(); }
+    const uint8_t* lut8_chain() const { return lut8_chain_.data(); }
+    const uint8_t* next8_chain() const { return next8_chain_.data(); }
     int bit_depth() const { return bit_depth_; }
 
 private:
     int bit_depth_ = 8;
     std::vector<uint8_t> lut8_;
     std::vector<uint8_t> full_;  // precomputed scale_lut over the whole bit-depth range
+    std::array<uint8_t, 256> next8_{}, lut8_chain_{}, next8_chain_{};
 };
 
 }  // namespace filmgrain::av1

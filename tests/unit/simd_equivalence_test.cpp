@@ -257,21 +257,21 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
             av1::blend_luma_row<Pixel>(src.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
                                        clip.min_value, clip.max_luma);
             if constexpr (sizeof(Pixel) == 1)
-                av1::simd::blend_luma_row_u8(src.data(), got.data(), luma_noise.row, width, scaling.table8().data(),
+                av1::simd::blend_luma_row_u8(src.data(), got.data(), luma_noise.row, width, scaling,
                                              shift, clip.min_value, clip.max_luma);
             else
                 av1::simd::blend_luma_row_u16(src.data(), got.data(), luma_noise.row, width,
-                                              scaling.table8().data(), shift, bd, clip.min_value, clip.max_luma);
+                                              scaling, shift, bd, clip.min_value, clip.max_luma);
             ASSERT_EQ(got, want) << "luma, iteration " << iter << " bd " << bd << " width " << width;
             av1::blend_chroma_row<Pixel>(src.data(), want.data(), luma.data(), luma_width, chroma_noise.flat.data(),
                                          width, subx, index, scaling, shift, bd, clip.min_value, clip.max_chroma);
             if constexpr (sizeof(Pixel) == 1)
                 av1::simd::blend_chroma_row_u8(src.data(), got.data(), luma.data(), luma_width, chroma_noise.row,
-                                               width, subx, index, scaling.table8().data(), shift, bd,
+                                               width, subx, index, scaling, shift, bd,
                                                clip.min_value, clip.max_chroma);
             else
                 av1::simd::blend_chroma_row_u16(src.data(), got.data(), luma.data(), luma_width, chroma_noise.row,
-                                                width, subx, index, scaling.table8().data(), shift, bd,
+                                                width, subx, index, scaling, shift, bd,
                                                 clip.min_value, clip.max_chroma);
             ASSERT_EQ(got, want) << "chroma, iteration " << iter << " bd " << bd << " width " << width << " subx "
                                  << subx << " luma width " << luma_width;
@@ -279,10 +279,10 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
             std::vector<Pixel> in_place = src;
             if constexpr (sizeof(Pixel) == 1)
                 av1::simd::blend_luma_row_u8(in_place.data(), in_place.data(), luma_noise.row, width,
-                                             scaling.table8().data(), shift, clip.min_value, clip.max_luma);
+                                             scaling, shift, clip.min_value, clip.max_luma);
             else
                 av1::simd::blend_luma_row_u16(in_place.data(), in_place.data(), luma_noise.row, width,
-                                              scaling.table8().data(), shift, bd, clip.min_value, clip.max_luma);
+                                              scaling, shift, bd, clip.min_value, clip.max_luma);
             av1::blend_luma_row<Pixel>(src.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
                                        clip.min_value, clip.max_luma);
             ASSERT_EQ(in_place, want) << "luma in place, iteration " << iter;

@@ -6,10 +6,11 @@
 // it out, so the blends read it straight from the grain template at each block's random
 // offset instead of from a copied noise stripe.
 //
-// Scaling functions are passed as the spec's 256-byte ScalingLut (ScalingLookup::table8())
-// at every bit depth (above 8 bits scale_lut interpolates it), with the scaling shift:
-// Round2(scale * noise, shift) is then one rounding high multiply (pmulhrsw) in 16-bit lanes
-// of the scale shifted up to q15 (scale <= 255 and shift >= 8 keep it below 2^15).
+// Scaling functions are passed as their ScalingLookup: the spec's 256-byte ScalingLut laid
+// out for byte shuffles at every bit depth, and above 8 bits scale_lut over the whole range
+// (made once per parameter set). Round2(scale * noise, shift) is one rounding high multiply
+// (pmulhrsw) in 16-bit lanes of the scale shifted up to q15 (scale <= 255 and shift >= 8
+// keep it below 2^15).
 #pragma once
 #include <cstdint>
 
@@ -45,17 +46,17 @@ struct BlockNoiseRow {
 
 // Twins of blend_luma_row.
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
-                       const uint8_t* scaling, int scaling_shift, int min_value, int max_value);
+                       const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                        const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 
 // Twins of blend_chroma_row.
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                         const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 
 // Twin of the vertical overlap of build_stripe_noise: cur[x] = clamp((old[x] * old_weight +
 // cur[x] * new_weight + 16) >> 5, gmin, gmax).

@@ -247,153 +247,183 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
     }
 }
 
-// 8 bits: the scaling function is the spec's 256-byte ScalingLut (values 0..255, made once
-// per parameter set), looked up with sixteen 16-entry byte shuffles. A shuffle yields 0 in
-// lanes whose index has bit 7 set, so an index saturated upwards by 16 per step stays valid
-// (below 128) exactly for the steps j >= its high nibble; with each step's table the XOR of
-// two neighbouring 16-entry rows of the LUT, the XOR over those steps leaves the wanted row.
-// The indices from 128 up take a second chain on index - 128. Three vector operations per
-// 16 entries and no per-step constants replace a scalar load and store per sample.
-// kTables tables looked up at the same indices (the 8-bit LUT alone, or above 8 bits the
-// LUT and its successor row for the interpolation), sharing the index arithmetic.
-template <int kTables>
-HWY_INLINE void LookUpBytes(const uint8_t* index, int count, const uint8_t* const (&tables)[kTables],
-                            uint8_t* const (&outs)[kTables]) {
+// 8 bits: the scaling function is the spec's 256-byte ScalingLut (values 0..255), looked up
+// with sixteen 16-entry byte shuffles. A shuffle yields 0 in lanes whose index has bit 7 set,
+// so an index saturated upwards by 16 per step stays valid (below 128) exactly for the steps
+// j >= its high nibble; with each step's table the XOR of two neighbouring 16-entry rows of
+// the LUT, the XOR over those steps leaves the wanted row. The indices from 128 up take a
+// second chain on index - 128. Three vector operations per 16 entries and no per-step
+// constants replace a scalar load and store per sample. The XOR'd rows are made once per
+// parameter set (ScalingLookup::lut8_chain()).
+struct ShuffleTable {
+    const uint8_t* lut;    // 256 entries
+    const uint8_t* chain;  // its rows XOR'd as ScalingLookup::lut8_chain() describes
+};
+
+// The bytes of kTables tables at the byte indices `index` (the 8-bit LUT alone, or above 8
+// bits the LUT and its successor for the interpolation), sharing the index arithmetic.
+// Needs whole 16-byte blocks.
+template <int kTables, class D8>
+HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleTable (&tables)[kTables],
+                             hn::Vec<D8> (&out)[kTables]) {
+    // Picture content is locally smooth: most vectors' high nibbles lie within one of the
+    // first lane's (90 % of 32-sample luma vectors of the benchmark stream), and three plain
+    // rows of the LUT then give the same values as the chain below.
+    const int h0 = hn::GetLane(index) >> 4;
+    const auto rel = hn::Sub(hn::ShiftRight<4>(index), hn::Set(du8, uint8_t(h0 - 1)));  // wraps below 0
+    const auto two = hn::Set(du8, uint8_t(2));
+    if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel, two), hn::Zero(du8)))) {
+        const auto low = hn::And(index, hn::Set(du8, uint8_t(15)));
+        const auto is_same = hn::Eq(rel, hn::Set(du8, uint8_t(1))), is_above = hn::Eq(rel, two);
+        for (int t = 0; t < kTables; ++t) {
+            const uint8_t* lut = tables[t].lut;
+            const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * std::max(h0 - 1, 0)), low);
+            const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * h0), low);
+            const auto above = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * std::min(h0 + 1, 15)), low);
+            out[t] = hn::IfThenElse(is_above, above, hn::IfThenElse(is_same, same, below));
+        }
+        return;
+    }
+    const auto step = hn::Set(du8, uint8_t(16));
+    auto lo = index, hi = hn::Xor(index, hn::Set(du8, uint8_t(0x80)));
+    hn::Vec<D8> r_lo[kTables], r_hi[kTables];
+    for (int t = 0; t < kTables; ++t) {
+        r_lo[t] = hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * 7), lo);
+        r_hi[t] = hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * 15), hi);
+    }
+    for (int j = 6; j >= 0; --j) {
+        lo = hn::SaturatedAdd(lo, step);
+        hi = hn::SaturatedAdd(hi, step);
+        for (int t = 0; t < kTables; ++t) {
+            r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * j), lo));
+            r_hi[t] =
+                hn::Xor(r_hi[t], hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * (8 + j)), hi));
+        }
+    }
+    for (int t = 0; t < kTables; ++t) out[t] = hn::Xor(r_lo[t], r_hi[t]);
+}
+
+// out[k] = lut[index[k]] for k < count.
+HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleTable& table) {
     const hn::ScalableTag<uint8_t> du8;
     const int n = int(hn::Lanes(du8));
     int k = 0;
-    // Byte shuffles need whole 16-byte blocks: a one-lane (scalar) target loads instead.
-    if (n >= 16 && count >= n) {
-        using V = hn::Vec<decltype(du8)>;
-        V rows[kTables][16];
-        for (int t = 0; t < kTables; ++t)
-            for (int j = 0; j < 16; ++j) {
-                rows[t][j] = hn::LoadDup128(du8, tables[t] + 16 * j);
-                if (j % 8 != 7) rows[t][j] = hn::Xor(rows[t][j], hn::LoadDup128(du8, tables[t] + 16 * (j + 1)));
-            }
-        const auto step = hn::Set(du8, uint8_t(16)), top = hn::Set(du8, uint8_t(0x80));
-        const auto one = hn::Set(du8, uint8_t(1)), two = hn::Set(du8, uint8_t(2)), low_mask = hn::Set(du8, uint8_t(15));
+    if (n >= 16) {
+        const ShuffleTable tables[1] = {table};
         for (; k + n <= count; k += n) {
-            auto lo = hn::LoadU(du8, index + k);
-            // Picture content is locally smooth: most vectors' high nibbles lie within one of
-            // the first lane's (90 % of 32-sample luma vectors of the benchmark stream), and
-            // three plain rows of the LUT then give the same values as the chain below.
-            const int h0 = index[k] >> 4;
-            const auto rel = hn::Sub(hn::ShiftRight<4>(lo), hn::Set(du8, uint8_t(h0 - 1)));  // wraps below 0
-            if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel, two), hn::Zero(du8)))) {
-                const auto low = hn::And(lo, low_mask);
-                const auto is_same = hn::Eq(rel, one), is_above = hn::Eq(rel, two);
-                for (int t = 0; t < kTables; ++t) {
-                    const uint8_t* table = tables[t];
-                    const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * std::max(h0 - 1, 0)), low);
-                    const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * h0), low);
-                    const auto above =
-                        hn::TableLookupBytes(hn::LoadDup128(du8, table + 16 * std::min(h0 + 1, 15)), low);
-                    hn::StoreU(hn::IfThenElse(is_above, above, hn::IfThenElse(is_same, same, below)), du8,
-                               outs[t] + k);
-                }
-                continue;
-            }
-            auto hi = hn::Xor(lo, top);
-            V r_lo[kTables], r_hi[kTables];
-            for (int t = 0; t < kTables; ++t) {
-                r_lo[t] = hn::TableLookupBytesOr0(rows[t][7], lo);
-                r_hi[t] = hn::TableLookupBytesOr0(rows[t][15], hi);
-            }
-            for (int j = 6; j >= 0; --j) {
-                lo = hn::SaturatedAdd(lo, step);
-                hi = hn::SaturatedAdd(hi, step);
-                for (int t = 0; t < kTables; ++t) {
-                    r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(rows[t][j], lo));
-                    r_hi[t] = hn::Xor(r_hi[t], hn::TableLookupBytesOr0(rows[t][8 + j], hi));
-                }
-            }
-            for (int t = 0; t < kTables; ++t) hn::StoreU(hn::Xor(r_lo[t], r_hi[t]), du8, outs[t] + k);
+            hn::Vec<decltype(du8)> got[1];
+            LookUpVector<1>(du8, hn::LoadU(du8, index + k), tables, got);
+            hn::StoreU(got[0], du8, out + k);
         }
     }
-    for (; k < count; ++k)
-        for (int t = 0; t < kTables; ++t) outs[t][k] = tables[t][index[k]];
+    for (; k < count; ++k) out[k] = table.lut[index[k]];
 }
 
-HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const uint8_t* table) {
-    const uint8_t* const tables[1] = {table};
-    uint8_t* const outs[1] = {out};
-    LookUpBytes<1>(index, count, tables, outs);
-}
-
-// Above 8 bits scale_lut interpolates the 8-bit LUT (7.18.3.5): s + (((e - s) * rem +
-// round) >> shift) with s = LUT[i >> shift], e = LUT[(i >> shift) + 1] (LUT[255] past the
-// end), shift = bit_depth - 8 and rem the low bits of i. s and e are byte-shuffle look-ups
-// as at 8 bits (cheaper than a scalar load per sample from a 1 << bit_depth table), the
-// interpolation is done in 16-bit lanes, and the result is shifted up to q15.
+// Above 8 bits the scale of sample i is scale_lut(i) (7.18.3.5: the 8-bit LUT at
+// i >> shift, interpolated towards its next entry by the low bits, shift = bit_depth - 8).
+// ScalingLookup keeps it over the whole bit-depth range (exact by construction): too many
+// entries for byte shuffles, but decoded pictures are locally smooth, and in most pairs of
+// vectors every sample lies within one 16-entry row of that table of the first sample's row
+// (81 % of the 32-sample luma vectors of the 10-bit benchmark stream). Three shuffles then
+// look the pair up. The other pairs take the spec's form: the two 8-bit LUT entries by byte
+// shuffles as at 8 bits (where most vectors again need only three rows) and the
+// interpolation in 16-bit lanes. Either way the two vectors' bytes share one byte vector
+// (even bytes the first, odd bytes the second), so no byte crosses a lane on the way there
+// and back. The results are shifted up to q15.
 class InterpolatedScales {
 public:
-    InterpolatedScales(const uint8_t* lut, int bit_depth, int scaling_shift)
-        : lut_(lut), bd_shift_(bit_depth - 8), up_shift_(15 - scaling_shift) {
-        std::memcpy(next_, lut + 1, 255);
-        next_[255] = lut[255];
-    }
+    InterpolatedScales(const ScalingLookup& scaling, int bit_depth, int scaling_shift)
+        : tables_{{scaling.table8().data(), scaling.lut8_chain()}, {scaling.next8(), scaling.next8_chain()}},
+          full_(scaling.full_table()),
+          bd_shift_(bit_depth - 8),
+          last_row_((1 << bit_depth) / 16 - 1),
+          up_shift_(15 - scaling_shift) {}
     // Looks up `count` indices (a multiple of the 16-bit lane count); then At(k) gives the
     // q15 scales of lanes [k, k + Lanes).
     template <typename Index>
     HWY_INLINE void LookUp(const Index* index, int count) {
+        const auto* in = reinterpret_cast<const uint16_t*>(index);
+        int k = 0;
+#if HWY_TARGET != HWY_SCALAR  // byte shuffles need whole 16-byte blocks
         const D16 d16;
-        const hn::Rebind<uint8_t, D16> d8;
-        const int n = int(hn::Lanes(d16));
-        index_ = reinterpret_cast<const int16_t*>(index);
-        for (int k = 0; k < count; k += n)
-            hn::Store(hn::DemoteTo(d8, hn::ShiftRightSame(hn::LoadU(d16, index_ + k), bd_shift_)), d8, top_ + k);
-        const uint8_t* const tables[2] = {lut_, next_};
-        uint8_t* const outs[2] = {start_, end_};
-        LookUpBytes<2>(top_, count, tables, outs);
-    }
-    HWY_INLINE hn::Vec<D16> At(int k) const {
-        const D16 d16;
-        const hn::Rebind<uint8_t, D16> d8;
         const hn::RebindToUnsigned<D16> du16;
-        const auto s = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, start_ + k)));
-        const auto e = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, end_ + k)));
-        const auto rem = hn::And(hn::LoadU(d16, index_ + k), hn::Set(d16, int16_t((1 << bd_shift_) - 1)));
-        const auto step = hn::Add(hn::Mul(hn::Sub(e, s), rem), hn::Set(d16, int16_t(1 << (bd_shift_ - 1))));
-        return hn::ShiftLeftSame(hn::Add(s, hn::ShiftRightSame(step, bd_shift_)), up_shift_);
+        const hn::Repartition<uint8_t, D16> du8;
+        const int n = int(hn::Lanes(d16));
+        const auto two = hn::Set(du16, uint16_t(2)), nibble = hn::Set(du16, uint16_t(15));
+        const auto low_byte = hn::Set(du16, uint16_t(0x00FF)), high_byte = hn::Set(du16, uint16_t(0xFF00));
+        const auto rem_mask = hn::Set(d16, int16_t((1 << bd_shift_) - 1));
+        const auto half = hn::Set(d16, int16_t(1 << (bd_shift_ - 1)));
+        auto interpolate = [&](auto start, auto end, auto i) {
+            const auto s = hn::BitCast(d16, start), e = hn::BitCast(d16, end);
+            const auto step = hn::Add(hn::Mul(hn::Sub(e, s), hn::And(hn::BitCast(d16, i), rem_mask)), half);
+            return hn::Add(s, hn::ShiftRightSame(step, bd_shift_));
+        };
+        for (; k + 2 * n <= count; k += 2 * n) {
+            const auto a = hn::LoadU(du16, in + k), b = hn::LoadU(du16, in + k + n);
+            const int row = in[k] >> 4;
+            const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
+            const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
+            hn::Vec<decltype(d16)> scale_a, scale_b;
+            if (hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
+                const auto low = hn::BitCast(du8, hn::Or(hn::And(a, nibble), hn::ShiftLeft<8>(hn::And(b, nibble))));
+                const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
+                const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * std::max(row - 1, 0)), low);
+                const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * row), low);
+                const auto above =
+                    hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * std::min(row + 1, last_row_)), low);
+                const auto got = hn::BitCast(
+                    du16, hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(2))), above,
+                                         hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))), same, below)));
+                scale_a = hn::BitCast(d16, hn::And(got, low_byte));
+                scale_b = hn::BitCast(d16, hn::ShiftRight<8>(got));
+            } else {
+                // Indices below 1 << bit_depth keep the top bytes below 256.
+                const auto top = hn::Or(hn::And(hn::ShiftRightSame(a, bd_shift_), low_byte),
+                                        hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
+                hn::Vec<decltype(du8)> ends[2];
+                LookUpVector<2>(du8, hn::BitCast(du8, top), tables_, ends);
+                const auto s = hn::BitCast(du16, ends[0]), e = hn::BitCast(du16, ends[1]);
+                scale_a = interpolate(hn::And(s, low_byte), hn::And(e, low_byte), a);
+                scale_b = interpolate(hn::ShiftRight<8>(s), hn::ShiftRight<8>(e), b);
+            }
+            hn::Store(hn::ShiftLeftSame(scale_a, up_shift_), d16, scale_ + k);
+            hn::Store(hn::ShiftLeftSame(scale_b, up_shift_), d16, scale_ + k + n);
+        }
+#endif
+        for (; k < count; ++k) scale_[k] = int16_t(full_[in[k]] << up_shift_);
     }
+    HWY_INLINE hn::Vec<D16> At(int k) const { return hn::Load(D16(), scale_ + k); }
     // scale_lut(i), one sample.
-    int Scalar(int i) const {
-        const int x = i >> bd_shift_, rem = i & ((1 << bd_shift_) - 1);
-        return lut_[x] + (((next_[x] - lut_[x]) * rem + (1 << (bd_shift_ - 1))) >> bd_shift_);
-    }
+    int Scalar(int i) const { return full_[i]; }
 
 private:
-    const uint8_t* lut_;
-    int bd_shift_, up_shift_;
-    const int16_t* index_ = nullptr;
-    HWY_ALIGN uint8_t next_[256];
-    HWY_ALIGN uint8_t top_[kChunk];
-    HWY_ALIGN uint8_t start_[kChunk];
-    HWY_ALIGN uint8_t end_[kChunk];
+    ShuffleTable tables_[2];  // ScalingLut and its successor
+    const uint8_t* full_;
+    int bd_shift_, last_row_, up_shift_;
+    HWY_ALIGN int16_t scale_[kChunk];
 };
 
 // 8 bits: scale * noise in 16-bit lanes (255 * 128 fits), rounded by pmulhrsw with the
 // scale shifted up to q15.
-void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width, const uint8_t* scaling,
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width, const ScalingLookup& scaling,
                     int scaling_shift, int min_value, int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     HWY_ALIGN uint8_t scale[kChunk];
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        LookUpScaling8(src + x, scale, chunk, scaling);
+        LookUpScaling8(src + x, scale, chunk, {scaling.table8().data(), scaling.lut8_chain()});
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
     for (int x = vec_end; x < width; ++x) {
-        const int v = src[x] + round2_signed(scaling[src[x]] * noise.at(x), scaling_shift);
+        const int v = src[x] + round2_signed(scaling(src[x]) * noise.at(x), scaling_shift);
         dst[x] = static_cast<uint8_t>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
 }
 
 // Above 8 bits the 16-bit lanes hold the samples themselves.
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                     const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
@@ -418,25 +448,25 @@ inline int ChromaVectorEnd(int width, int luma_width, int subsampling_x) {
 
 void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                      const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         ChromaIndicesForTarget(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
-        LookUpScaling8(merged, scale, chunk, scaling);
+        LookUpScaling8(merged, scale, chunk, {scaling.table8().data(), scaling.lut8_chain()});
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
     BlendChromaScalar(
         src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
-        [&](int merged_index, int nz) { return round2_signed(scaling[merged_index] * nz, scaling_shift); }, bit_depth,
+        [&](int merged_index, int nz) { return round2_signed(scaling(merged_index) * nz, scaling_shift); }, bit_depth,
         min_value, max_value);
 }
 
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                       const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN int16_t merged[kChunk];
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
@@ -505,23 +535,23 @@ HWY_EXPORT(CrossFadeRow);
 HWY_EXPORT(AssembleNoiseRow);
 
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
-                       const uint8_t* scaling, int scaling_shift, int min_value, int max_value) {
+                       const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
 }
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                        const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value,
                                           max_value);
 }
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                         const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendChromaRowU8)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
                                            scaling_shift, bit_depth, min_value, max_value);
 }
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const uint8_t* scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
                                             scaling_shift, bit_depth, min_value, max_value);
 }
