@@ -254,17 +254,22 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // the LUT, the XOR over those steps leaves the wanted row. The indices from 128 up take a
 // second chain on index - 128. Three vector operations per 16 entries and no per-step
 // constants replace a scalar load and store per sample. The XOR'd rows are made once per
-// parameter set (ScalingLookup::lut8_chain()).
-struct ShuffleTable {
-    const uint8_t* lut;    // 256 entries
-    const uint8_t* chain;  // its rows XOR'd as ScalingLookup::lut8_chain() describes
+// parameter set (ScalingLookup::lut8_chain()) and broadcast to whole vectors once per row,
+// so that the chain reads them with plain loads.
+template <class D8>
+struct ShuffleRows {
+    const uint8_t* lut;  // 256 entries
+    hn::Vec<D8> chain[16];
+    ShuffleRows(D8 d, const uint8_t* lut_in, const uint8_t* chain_in) : lut(lut_in) {
+        for (int j = 0; j < 16; ++j) chain[j] = hn::LoadDup128(d, chain_in + 16 * j);
+    }
 };
 
 // The bytes of kTables tables at the byte indices `index` (the 8-bit LUT alone, or above 8
 // bits the LUT and its successor for the interpolation), sharing the index arithmetic.
 // Needs whole 16-byte blocks.
 template <int kTables, class D8>
-HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleTable (&tables)[kTables],
+HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* const (&tables)[kTables],
                              hn::Vec<D8> (&out)[kTables]) {
     // Picture content is locally smooth: most vectors' high nibbles lie within one of the
     // first lane's (90 % of 32-sample luma vectors of the benchmark stream), and three plain
@@ -276,7 +281,7 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleTable (&tab
         const auto low = hn::And(index, hn::Set(du8, uint8_t(15)));
         const auto is_same = hn::Eq(rel, hn::Set(du8, uint8_t(1))), is_above = hn::Eq(rel, two);
         for (int t = 0; t < kTables; ++t) {
-            const uint8_t* lut = tables[t].lut;
+            const uint8_t* lut = tables[t]->lut;
             const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * std::max(h0 - 1, 0)), low);
             const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * h0), low);
             const auto above = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * std::min(h0 + 1, 15)), low);
@@ -288,35 +293,36 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleTable (&tab
     auto lo = index, hi = hn::Xor(index, hn::Set(du8, uint8_t(0x80)));
     hn::Vec<D8> r_lo[kTables], r_hi[kTables];
     for (int t = 0; t < kTables; ++t) {
-        r_lo[t] = hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * 7), lo);
-        r_hi[t] = hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * 15), hi);
+        r_lo[t] = hn::TableLookupBytesOr0(tables[t]->chain[7], lo);
+        r_hi[t] = hn::TableLookupBytesOr0(tables[t]->chain[15], hi);
     }
     for (int j = 6; j >= 0; --j) {
         lo = hn::SaturatedAdd(lo, step);
         hi = hn::SaturatedAdd(hi, step);
         for (int t = 0; t < kTables; ++t) {
-            r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * j), lo));
-            r_hi[t] =
-                hn::Xor(r_hi[t], hn::TableLookupBytesOr0(hn::LoadDup128(du8, tables[t].chain + 16 * (8 + j)), hi));
+            r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(tables[t]->chain[j], lo));
+            r_hi[t] = hn::Xor(r_hi[t], hn::TableLookupBytesOr0(tables[t]->chain[8 + j], hi));
         }
     }
     for (int t = 0; t < kTables; ++t) out[t] = hn::Xor(r_lo[t], r_hi[t]);
 }
 
+using D8 = hn::ScalableTag<uint8_t>;
+
 // out[k] = lut[index[k]] for k < count.
-HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleTable& table) {
-    const hn::ScalableTag<uint8_t> du8;
+HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleRows<D8>& rows) {
+    const D8 du8;
     const int n = int(hn::Lanes(du8));
     int k = 0;
     if (n >= 16) {
-        const ShuffleTable tables[1] = {table};
+        const ShuffleRows<D8>* const tables[1] = {&rows};
         for (; k + n <= count; k += n) {
-            hn::Vec<decltype(du8)> got[1];
+            hn::Vec<D8> got[1];
             LookUpVector<1>(du8, hn::LoadU(du8, index + k), tables, got);
             hn::StoreU(got[0], du8, out + k);
         }
     }
-    for (; k < count; ++k) out[k] = table.lut[index[k]];
+    for (; k < count; ++k) out[k] = rows.lut[index[k]];
 }
 
 // Above 8 bits the scale of sample i is scale_lut(i) (7.18.3.5: the 8-bit LUT at
@@ -324,16 +330,22 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
 // ScalingLookup keeps it over the whole bit-depth range (exact by construction): too many
 // entries for byte shuffles, but decoded pictures are locally smooth, and in most pairs of
 // vectors every sample lies within one 16-entry row of that table of the first sample's row
-// (81 % of the 32-sample luma vectors of the 10-bit benchmark stream). Three shuffles then
+// (83 % of the 32-sample luma vectors of the 10-bit benchmark stream). Three shuffles then
 // look the pair up. The other pairs take the spec's form: the two 8-bit LUT entries by byte
 // shuffles as at 8 bits (where most vectors again need only three rows) and the
 // interpolation in 16-bit lanes. Either way the two vectors' bytes share one byte vector
 // (even bytes the first, odd bytes the second), so no byte crosses a lane on the way there
-// and back. The results are shifted up to q15.
+// and back. Where the row test mostly fails (noisy content: more than half the pairs of a
+// chunk), the rest of the row skips it and looks a whole chunk's LUT entries up at once,
+// which schedules better than pair by pair. The results are shifted up to q15.
 class InterpolatedScales {
 public:
     InterpolatedScales(const ScalingLookup& scaling, int bit_depth, int scaling_shift)
-        : tables_{{scaling.table8().data(), scaling.lut8_chain()}, {scaling.next8(), scaling.next8_chain()}},
+        :
+#if HWY_TARGET != HWY_SCALAR
+          lut_rows_(D8x(), scaling.table8().data(), scaling.lut8_chain()),
+          next_rows_(D8x(), scaling.next8(), scaling.next8_chain()),
+#endif
           full_(scaling.full_table()),
           bd_shift_(bit_depth - 8),
           last_row_((1 << bit_depth) / 16 - 1),
@@ -358,6 +370,8 @@ public:
             const auto step = hn::Add(hn::Mul(hn::Sub(e, s), hn::And(hn::BitCast(d16, i), rem_mask)), half);
             return hn::Add(s, hn::ShiftRightSame(step, bd_shift_));
         };
+        if (!by_rows_) return LookUpChunk(in, 0, count);
+        int misses = 0;
         for (; k + 2 * n <= count; k += 2 * n) {
             const auto a = hn::LoadU(du16, in + k), b = hn::LoadU(du16, in + k + n);
             const int row = in[k] >> 4;
@@ -377,6 +391,7 @@ public:
                 scale_a = hn::BitCast(d16, hn::And(got, low_byte));
                 scale_b = hn::BitCast(d16, hn::ShiftRight<8>(got));
             } else {
+                ++misses;
                 // Indices below 1 << bit_depth keep the top bytes below 256.
                 const auto top = hn::Or(hn::And(hn::ShiftRightSame(a, bd_shift_), low_byte),
                                         hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
@@ -389,6 +404,9 @@ public:
             hn::Store(hn::ShiftLeftSame(scale_a, up_shift_), d16, scale_ + k);
             hn::Store(hn::ShiftLeftSame(scale_b, up_shift_), d16, scale_ + k + n);
         }
+        // Noisy content: where more than half the pairs of a chunk missed the row test, the
+        // rest of the row skips it.
+        by_rows_ = 2 * misses * 2 * n <= k;
 #endif
         for (; k < count; ++k) scale_[k] = int16_t(full_[in[k]] << up_shift_);
     }
@@ -397,9 +415,49 @@ public:
     int Scalar(int i) const { return full_[i]; }
 
 private:
-    ShuffleTable tables_[2];  // ScalingLut and its successor
+#if HWY_TARGET != HWY_SCALAR
+    // The spec's form for a whole chunk: top bytes, then both LUT entries of every sample,
+    // then the interpolation.
+    HWY_INLINE void LookUpChunk(const uint16_t* in, int from, int count) {
+        const D16 d16;
+        const hn::RebindToUnsigned<D16> du16;
+        const hn::Rebind<uint8_t, D16> d8;
+        const hn::Repartition<uint8_t, D16> du8;
+        const int n = int(hn::Lanes(d16)), nb = int(hn::Lanes(du8));
+        for (int j = from; j < count; j += n)
+            hn::Store(hn::DemoteTo(d8, hn::ShiftRightSame(hn::BitCast(d16, hn::LoadU(du16, in + j)), bd_shift_)), d8,
+                      top_ + j);
+        int j = from;
+        for (; j + nb <= count; j += nb) {
+            hn::Vec<decltype(du8)> ends[2];
+            LookUpVector<2>(du8, hn::LoadU(du8, top_ + j), tables_, ends);
+            hn::StoreU(ends[0], du8, start_ + j);
+            hn::StoreU(ends[1], du8, end_ + j);
+        }
+        for (; j < count; ++j) start_[j] = lut_rows_.lut[top_[j]], end_[j] = next_rows_.lut[top_[j]];
+        const auto rem_mask = hn::Set(d16, int16_t((1 << bd_shift_) - 1));
+        const auto half = hn::Set(d16, int16_t(1 << (bd_shift_ - 1)));
+        for (int i = from; i < count; i += n) {
+            const auto s = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, start_ + i)));
+            const auto e = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, end_ + i)));
+            const auto rem = hn::And(hn::BitCast(d16, hn::LoadU(du16, in + i)), rem_mask);
+            const auto step = hn::Add(hn::Mul(hn::Sub(e, s), rem), half);
+            hn::Store(hn::ShiftLeftSame(hn::Add(s, hn::ShiftRightSame(step, bd_shift_)), up_shift_), d16, scale_ + i);
+        }
+    }
+#endif
+
+#if HWY_TARGET != HWY_SCALAR
+    using D8x = hn::Repartition<uint8_t, D16>;
+    ShuffleRows<D8x> lut_rows_, next_rows_;  // ScalingLut and its successor
+    const ShuffleRows<D8x>* const tables_[2] = {&lut_rows_, &next_rows_};
+#endif
     const uint8_t* full_;
     int bd_shift_, last_row_, up_shift_;
+    bool by_rows_ = true;
+    HWY_ALIGN uint8_t top_[kChunk];
+    HWY_ALIGN uint8_t start_[kChunk];
+    HWY_ALIGN uint8_t end_[kChunk];
     HWY_ALIGN int16_t scale_[kChunk];
 };
 
@@ -410,9 +468,10 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     HWY_ALIGN uint8_t scale[kChunk];
+    const ShuffleRows<D8> rows(D8(), scaling.table8().data(), scaling.lut8_chain());
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
-        LookUpScaling8(src + x, scale, chunk, {scaling.table8().data(), scaling.lut8_chain()});
+        LookUpScaling8(src + x, scale, chunk, rows);
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
     for (int x = vec_end; x < width; ++x) {
@@ -452,10 +511,11 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
+    const ShuffleRows<D8> rows(D8(), scaling.table8().data(), scaling.lut8_chain());
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         ChromaIndicesForTarget(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
-        LookUpScaling8(merged, scale, chunk, {scaling.table8().data(), scaling.lut8_chain()});
+        LookUpScaling8(merged, scale, chunk, rows);
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
     BlendChromaScalar(
