@@ -1,9 +1,9 @@
 // The AV1 noise application kernels alone (av1/simd/av1_kernels.hpp: scaling look-up,
 // chroma scaling index, overlap fade and blend), 1920x1080 4:2:0, per plane kind and bit
-// depth, out of place, on two pictures: smooth (a ramp with small noise, locally smooth as
-// decoded pictures are, so most 32-sample vectors take the LUT's three-row path) and blocky
-// (the synthesis benchmark's picture, a random level per 8x8 block: most take the 16-step
-// chain). Each row's noise is read from a real grain template at random block offsets, as
+// depth, out of place, on two pictures: smooth (a ramp with noise of up to 16 8-bit codes,
+// so at 8 bits most 32-sample vectors take the LUT's three-row path, while at 10 bits the
+// noise spans several rows of the full-range table) and blocky (the synthesis benchmark's
+// picture, a random level per 8x8 block: most take the 16-step chain). Each row's noise is read from a real grain template at random block offsets, as
 // in synthesis. Reports seconds per sample; not part of the test suite.
 //
 //   build/filmgrain_av1_row_bench [--benchmark_repetitions=5]

@@ -10,8 +10,7 @@ namespace filmgrain::bench {
 // blocky: a ramp with noise and a random level per 8x8 block, so that neighbouring blocks
 // land in different intensity intervals, as in pictures with detail (a smooth ramp alone
 // would let whole rows of blocks share one interval's template; for AV1 it is the worst
-// case of the scaling look-up). Otherwise the ramp with small noise only, locally smooth as
-// decoded pictures are.
+// case of the scaling look-up). Otherwise the ramp with its noise only (up to 16 8-bit codes).
 inline FrameBuffer test_picture(int w, int h, int bd, bool blocky = true) {
     FrameBuffer b(w, h, PixelFormat{ChromaFormat::k420, bd});
     std::mt19937 rng(1);
