@@ -363,13 +363,6 @@ public:
         const int n = int(hn::Lanes(d16));
         const auto two = hn::Set(du16, uint16_t(2)), nibble = hn::Set(du16, uint16_t(15));
         const auto low_byte = hn::Set(du16, uint16_t(0x00FF)), high_byte = hn::Set(du16, uint16_t(0xFF00));
-        const auto rem_mask = hn::Set(d16, int16_t((1 << bd_shift_) - 1));
-        const auto half = hn::Set(d16, int16_t(1 << (bd_shift_ - 1)));
-        auto interpolate = [&](auto start, auto end, auto i) {
-            const auto s = hn::BitCast(d16, start), e = hn::BitCast(d16, end);
-            const auto step = hn::Add(hn::Mul(hn::Sub(e, s), hn::And(hn::BitCast(d16, i), rem_mask)), half);
-            return hn::Add(s, hn::ShiftRightSame(step, bd_shift_));
-        };
         if (!by_rows_) return LookUpChunk(in, 0, count);
         int misses = 0;
         for (; k + 2 * n <= count; k += 2 * n) {
@@ -398,8 +391,10 @@ public:
                 hn::Vec<decltype(du8)> ends[2];
                 LookUpVector<2>(du8, hn::BitCast(du8, top), tables_, ends);
                 const auto s = hn::BitCast(du16, ends[0]), e = hn::BitCast(du16, ends[1]);
-                scale_a = interpolate(hn::And(s, low_byte), hn::And(e, low_byte), a);
-                scale_b = interpolate(hn::ShiftRight<8>(s), hn::ShiftRight<8>(e), b);
+                scale_a = Interpolate(hn::BitCast(d16, hn::And(s, low_byte)), hn::BitCast(d16, hn::And(e, low_byte)),
+                                      hn::BitCast(d16, a));
+                scale_b = Interpolate(hn::BitCast(d16, hn::ShiftRight<8>(s)), hn::BitCast(d16, hn::ShiftRight<8>(e)),
+                                      hn::BitCast(d16, b));
             }
             hn::Store(hn::ShiftLeftSame(scale_a, up_shift_), d16, scale_ + k);
             hn::Store(hn::ShiftLeftSame(scale_b, up_shift_), d16, scale_ + k + n);
@@ -435,15 +430,21 @@ private:
             hn::StoreU(ends[1], du8, end_ + j);
         }
         for (; j < count; ++j) start_[j] = lut_rows_.lut[top_[j]], end_[j] = next_rows_.lut[top_[j]];
-        const auto rem_mask = hn::Set(d16, int16_t((1 << bd_shift_) - 1));
-        const auto half = hn::Set(d16, int16_t(1 << (bd_shift_ - 1)));
         for (int i = from; i < count; i += n) {
             const auto s = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, start_ + i)));
             const auto e = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, end_ + i)));
-            const auto rem = hn::And(hn::BitCast(d16, hn::LoadU(du16, in + i)), rem_mask);
-            const auto step = hn::Add(hn::Mul(hn::Sub(e, s), rem), half);
-            hn::Store(hn::ShiftLeftSame(hn::Add(s, hn::ShiftRightSame(step, bd_shift_)), up_shift_), d16, scale_ + i);
+            const auto scale = Interpolate(s, e, hn::BitCast(d16, hn::LoadU(du16, in + i)));
+            hn::Store(hn::ShiftLeftSame(scale, up_shift_), d16, scale_ + i);
         }
+    }
+
+    // scale_lut from its two LUT entries: start + Round2((end - start) * rem, shift), rem the
+    // low bits of the index.
+    HWY_INLINE hn::Vec<D16> Interpolate(hn::Vec<D16> start, hn::Vec<D16> end, hn::Vec<D16> index) const {
+        const D16 d16;
+        const auto rem = hn::And(index, hn::Set(d16, int16_t((1 << bd_shift_) - 1)));
+        const auto step = hn::Add(hn::Mul(hn::Sub(end, start), rem), hn::Set(d16, int16_t(1 << (bd_shift_ - 1))));
+        return hn::Add(start, hn::ShiftRightSame(step, bd_shift_));
     }
 #endif
 
