@@ -1,6 +1,7 @@
 // Piecewise-linear scaling function of AV1 spec 7.18.3.4 / 7.18.3.5 (scale_lut).
 // It maps a sample intensity to the strength (0..255) of the grain added there.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -17,8 +18,12 @@ public:
     // The same, rebuilding this object in place (reusing its storage).
     void assign(const int* point_value, const int* point_scaling, int count, int bit_depth);
 
-    // scale_lut(plane, index) for index in 0..(1 << bit_depth) - 1.
-    int operator()(int index) const { return full_[static_cast<std::size_t>(index)]; }
+    // scale_lut(plane, index) for index in 0..(1 << bit_depth) - 1. Larger indices (samples
+    // beyond the declared bit depth: bad input nobody scans for) read the last entry rather
+    // than past the table.
+    int operator()(int index) const {
+        return full_[std::min(static_cast<std::size_t>(index), full_.size() - 1)];
+    }
 
     // The 256-entry 8-bit table (ScalingLut[plane] in the spec).
     const std::vector<uint8_t>& table8() const { return lut8_; }

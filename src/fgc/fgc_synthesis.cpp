@@ -186,12 +186,14 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
         if (tables && rows_inside == kBlock) {
             // Whole blocks, the bulk of the picture: both flavours shift the sum by
             // log2(area) + bd - 8 (rdd5 divides by the area, exactly a shift here).
-            // The average is at most 255 at any bit depth; blocks in no interval read the
+            // The average is at most 255 at any bit depth (for samples within it; larger
+            // ones, bad input, are held to the last entry); blocks in no interval read the
             // zero table (table_offsets_).
             const int avg_shift = kLog2Area + bit_depth - 8;
             const int32_t* offsets = table_offsets_[c].data();
             const Table* base = table0 + row_offset;
-            for (; j < whole_blocks; j++) block_row[j] = base + offsets[sums[j] >> avg_shift] + places[j];
+            for (; j < whole_blocks; j++)
+                block_row[j] = base + offsets[std::min<uint32_t>(uint32_t(sums[j]) >> avg_shift, 255)] + places[j];
         }
         for (; j < columns; j++) {
             const int x0 = j * kBlock;

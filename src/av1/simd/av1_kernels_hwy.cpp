@@ -349,6 +349,7 @@ public:
           full_(scaling.full_table()),
           bd_shift_(bit_depth - 8),
           last_row_((1 << bit_depth) / 16 - 1),
+          index_max_((1 << bit_depth) - 1),
           up_shift_(15 - scaling_shift) {}
     // Looks up `count` indices (a multiple of the 16-bit lane count); then At(k) gives the
     // q15 scales of lanes [k, k + Lanes).
@@ -371,7 +372,10 @@ public:
             const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
             const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
             hn::Vec<decltype(d16)> scale_a, scale_b;
-            if (hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
+            // (A first sample beyond the bit depth, which would name a row past the table,
+            // takes the other form, whose byte indices cannot leave the LUT.)
+            if (row <= last_row_ &&
+                hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
                 const auto low = hn::BitCast(du8, hn::Or(hn::And(a, nibble), hn::ShiftLeft<8>(hn::And(b, nibble))));
                 const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
                 const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * std::max(row - 1, 0)), low);
@@ -385,7 +389,7 @@ public:
                 scale_b = hn::BitCast(d16, hn::ShiftRight<8>(got));
             } else {
                 ++misses;
-                // Indices below 1 << bit_depth keep the top bytes below 256.
+                // The top bytes of indices below 1 << bit_depth fit 8 bits (larger ones wrap).
                 const auto top = hn::Or(hn::And(hn::ShiftRightSame(a, bd_shift_), low_byte),
                                         hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
                 hn::Vec<decltype(du8)> ends[2];
@@ -403,11 +407,11 @@ public:
         // rest of the row skips it.
         by_rows_ = 2 * misses * 2 * n <= k;
 #endif
-        for (; k < count; ++k) scale_[k] = int16_t(full_[in[k]] << up_shift_);
+        for (; k < count; ++k) scale_[k] = int16_t(Scalar(in[k]) << up_shift_);
     }
     HWY_INLINE hn::Vec<D16> At(int k) const { return hn::Load(D16(), scale_ + k); }
-    // scale_lut(i), one sample.
-    int Scalar(int i) const { return full_[i]; }
+    // scale_lut(i), one sample (indices beyond the bit depth read the last entry).
+    int Scalar(int i) const { return full_[std::min(i, index_max_)]; }
 
 private:
 #if HWY_TARGET != HWY_SCALAR
@@ -454,7 +458,7 @@ private:
     const ShuffleRows<D8x>* const tables_[2] = {&lut_rows_, &next_rows_};
 #endif
     const uint8_t* full_;
-    int bd_shift_, last_row_, up_shift_;
+    int bd_shift_, last_row_, index_max_, up_shift_;
     bool by_rows_ = true;
     HWY_ALIGN uint8_t top_[kChunk];
     HWY_ALIGN uint8_t start_[kChunk];
