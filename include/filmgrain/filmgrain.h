@@ -216,7 +216,9 @@ FG_API fg_status fg_context_reset(fg_context* ctx);
 /* A picture in planar memory. Samples are uint8_t at bit depth 8 and host-order uint16_t
  * above. strides are in bytes and may be negative (planes[p] then points at the top row of
  * a bottom-up buffer). Chroma planes are ceil(width / 2) wide for 4:2:0 and 4:2:2 and
- * ceil(height / 2) high for 4:2:0. planes[1..2] are ignored for FG_CHROMA_400. */
+ * ceil(height / 2) high for 4:2:0. planes[1..2] are ignored for FG_CHROMA_400. Samples
+ * must lie below 1 << bit_depth; the library does not scan for larger ones (a pass per
+ * frame), which get unspecified grain but are never used to read outside its tables. */
 typedef struct fg_frame {
     void* planes[3];
     ptrdiff_t strides[3];

@@ -1,6 +1,8 @@
 // Frame and plane views handed to every synthesis model.
 // Samples are uint8_t when bit_depth == 8 and little-endian-in-memory uint16_t
-// (host order) when bit_depth > 8, as in FFmpeg's planar pix_fmts.
+// (host order) when bit_depth > 8, as in FFmpeg's planar pix_fmts. Samples must lie below
+// 1 << bit_depth: larger ones are not scanned for, get unspecified grain, and are never used
+// to read outside a table.
 #pragma once
 #include <cstddef>
 #include <cstdint>
