@@ -145,7 +145,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                                  StripeScratch& scratch) const {
     const int scaling_shift = p_.grain_scaling_minus_8 + 8;
     const bool overlap = p_.overlap_flag != 0;
-    const int gmin = -(128 << (bit_depth_ - 8)), gmax = (128 << (bit_depth_ - 8)) - 1;
+    const GrainRange range = grain_range(bit_depth_);
     const int blocks = num_blocks_across(width_);
     scratch.reserve(width_);
     const std::size_t pitch = std::size_t(noise_stripe_width(width_, 0));
@@ -165,9 +165,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         // The horizontal overlap is faded inside the kernels where 16-bit lanes hold it, else
         // precomputed per row (12 bits).
         const bool fade_in_kernel = overlap && bit_depth_ <= 10;
-        row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
-        row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
-        row.gmin = int16_t(gmin), row.gmax = int16_t(gmax);
+        for (int k = 0; k < 2; ++k) {
+            const OverlapWeights w = overlap_weights(k, sx);
+            row.fade_old[k] = int16_t(w.old_weight), row.fade_new[k] = int16_t(w.new_weight);
+        }
+        row.gmin = int16_t(range.min), row.gmax = int16_t(range.max);
         // Row `i` of the blocks at `origins`, as it reads the template.
         auto point_at_template_row = [&](const int32_t* origins, int i) {
             const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
@@ -193,9 +195,9 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             int16_t* cur = scratch.noise.data() + pitch * std::size_t(i);
             point_at_template_row(scratch.origins.data(), i);
             simd::assemble_noise_row(row, pw, cur);
-            const int w_old = sy ? 23 : (i == 0 ? 27 : 17), w_new = sy ? 22 : (i == 0 ? 17 : 27);
-            simd::cross_fade_row(scratch.previous.data() + pitch * std::size_t(i), cur, pw, w_old, w_new, gmin,
-                                 gmax);
+            const OverlapWeights w = overlap_weights(i, sy);
+            simd::cross_fade_row(scratch.previous.data() + pitch * std::size_t(i), cur, pw, w.old_weight,
+                                 w.new_weight, range.min, range.max);
         }
         for (int i = 0; i < rows; ++i) {
             if (i < shared_rows) {

@@ -6,18 +6,6 @@
 #include "av1/random_number.hpp"
 
 namespace filmgrain::av1 {
-namespace {
-
-// Cross-fade of two overlapping grain values with 5-bit weights, clipped back
-// to the grain range because the weights sum to more than 32 (27+17, 23+22):
-// the spec boosts the overlap slightly to compensate for the variance lost by
-// averaging two independent noise fields.
-inline int blend(int old_value, int old_weight, int new_value, int new_weight, int gmin, int gmax) {
-    const int v = (old_value * old_weight + new_value * new_weight + 16) >> 5;
-    return std::clamp(v, gmin, gmax);
-}
-
-}  // namespace
 
 std::vector<uint8_t> stripe_block_offsets(int grain_seed, int stripe, int blocks_across) {
     RandomNumberGenerator rng(stripe_seed(grain_seed, stripe));
@@ -36,7 +24,7 @@ NoiseStripe build_noise_stripe(const GrainTemplate& tmpl, const std::vector<uint
     s.width = blocks * block_w + (copy_w - block_w);
     s.height = copy_h;
     s.samples.assign(static_cast<std::size_t>(s.width) * s.height, 0);
-    const int gmin = -(128 << (bit_depth - 8)), gmax = (128 << (bit_depth - 8)) - 1;
+    const GrainRange range = grain_range(bit_depth);
 
     for (int b = 0; b < blocks; ++b) {
         const int rand = offsets[static_cast<std::size_t>(b)];
@@ -53,10 +41,8 @@ NoiseStripe build_noise_stripe(const GrainTemplate& tmpl, const std::vector<uint
                 int g = tmpl.at(ty + i, tx + j);
                 if (overlap && b > 0) {
                     // Columns already written by the left block's overlap.
-                    if (!subsampling_x && j < 2)
-                        g = blend(row[x0 + j], j == 0 ? 27 : 17, g, j == 0 ? 17 : 27, gmin, gmax);
-                    else if (subsampling_x && j == 0)
-                        g = blend(row[x0 + j], 23, g, 22, gmin, gmax);
+                    if (j < (2 >> subsampling_x))
+                        g = cross_fade(row[x0 + j], g, overlap_weights(j, subsampling_x), range);
                 }
                 row[x0 + j] = static_cast<int16_t>(g);
             }
@@ -87,18 +73,13 @@ StripeNoise build_stripe_noise(const GrainTemplate& tmpl, int grain_seed, int st
         // that each stripe depends only on (params, stripe index).
         const NoiseStripe prev = build_noise_stripe(tmpl, stripe_block_offsets(grain_seed, stripe - 1, blocks),
                                                     subsampling_x, subsampling_y, overlap, bit_depth);
-        const int gmin = -(128 << (bit_depth - 8)), gmax = (128 << (bit_depth - 8)) - 1;
+        const GrainRange range = grain_range(bit_depth);
         const int overlap_rows = std::min(out.rows, 2 >> subsampling_y);
         for (int i = 0; i < overlap_rows; ++i) {
             int16_t* row = out.samples.data() + static_cast<std::size_t>(i) * out.width;
             for (int x = 0; x < plane_width; ++x) {
-                const int old_value = prev.at(i + stripe_h, x);
-                int g;
-                if (!subsampling_y)
-                    g = blend(old_value, i == 0 ? 27 : 17, row[x], i == 0 ? 17 : 27, gmin, gmax);
-                else
-                    g = blend(old_value, 23, row[x], 22, gmin, gmax);
-                row[x] = static_cast<int16_t>(g);
+                row[x] = static_cast<int16_t>(
+                    cross_fade(prev.at(i + stripe_h, x), row[x], overlap_weights(i, subsampling_y), range));
             }
         }
     }

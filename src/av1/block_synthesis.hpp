@@ -18,6 +18,24 @@ inline constexpr int kBlockSize = 32;  // luma samples per block side and per st
 inline int num_blocks_across(int luma_width) { return (luma_width + kBlockSize - 1) / kBlockSize; }
 inline int num_stripes(int luma_height) { return (luma_height + kBlockSize - 1) / kBlockSize; }
 
+// The overlap cross-fade of 7.18.3.5: the k-th shared column (horizontally) or row
+// (vertically) mixes the earlier block's noise with weight old_weight and the later one's
+// with new_weight, Round2 by 5, clipped to the grain range because the weights sum to more
+// than 32 (the spec boosts the overlap to make up for the variance two averaged independent
+// noise fields lose). Two columns or rows are shared at full resolution, one when
+// subsampled; (0, 32) past that keeps the later value.
+struct OverlapWeights {
+    int old_weight, new_weight;
+};
+constexpr OverlapWeights overlap_weights(int k, int subsampled) {
+    if (subsampled) return k == 0 ? OverlapWeights{23, 22} : OverlapWeights{0, 32};
+    return k == 0 ? OverlapWeights{27, 17} : OverlapWeights{17, 27};
+}
+inline int cross_fade(int old_value, int new_value, OverlapWeights w, GrainRange range) {
+    const int v = (old_value * w.old_weight + new_value * w.new_weight + 16) >> 5;
+    return v < range.min ? range.min : v > range.max ? range.max : v;
+}
+
 // One 8-bit random number per block of a stripe, from the stripe's own seed.
 // The high nibble is the horizontal template offset, the low nibble the vertical.
 // All planes share them.

@@ -12,16 +12,6 @@ namespace {
 // Round2 with an arithmetic shift, as the spec defines it for signed values.
 inline int round2(int x, int n) { return n == 0 ? x : (x + (1 << (n - 1))) >> n; }
 
-// Grain is kept in a signed range one bit wider than 8-bit video at the
-// frame's bit depth: [-128 << (bd-8), (128 << (bd-8)) - 1].
-struct GrainRange {
-    int min, max;
-};
-inline GrainRange grain_range(int bit_depth) {
-    const int ctr = 128 << (bit_depth - 8);
-    return {-ctr, ctr - 1};
-}
-
 // Fills a template with scaled Gaussian numbers. The Gaussian sequence has
 // 12-bit magnitude; shifting by 12 - BitDepth brings it to the frame's bit depth,
 // and grain_scale_shift lowers the grain further.

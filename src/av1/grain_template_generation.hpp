@@ -20,6 +20,16 @@ inline constexpr int kSubsampledTemplateHeight = 38;
 // Border the AR filter leaves untouched on the top, left and right.
 inline constexpr int kArPadding = 3;
 
+// Grain is kept in a signed range one bit wider than 8-bit video at the frame's bit depth:
+// [-128 << (bd-8), (128 << (bd-8)) - 1].
+struct GrainRange {
+    int min, max;
+};
+inline GrainRange grain_range(int bit_depth) {
+    const int ctr = 128 << (bit_depth - 8);
+    return {-ctr, ctr - 1};
+}
+
 struct GrainTemplate {
     int width = 0;
     int height = 0;

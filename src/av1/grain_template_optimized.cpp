@@ -63,8 +63,9 @@ simd::ArFilterJob ar_job(GrainTemplate& t, const Av1FilmGrainParams& p, int bit_
     j.coeffs = coeffs;
     j.lag = p.ar_coeff_lag;
     j.shift = p.ar_coeff_shift_minus_6 + 6;
-    j.grain_min = -(128 << (bit_depth - 8));
-    j.grain_max = (128 << (bit_depth - 8)) - 1;
+    const GrainRange range = grain_range(bit_depth);
+    j.grain_min = range.min;
+    j.grain_max = range.max;
     return j;
 }
 

@@ -27,17 +27,14 @@ void stripe_block_origins(const GrainTemplate& tmpl, int grain_seed, int stripe,
 
 void overlap_seams(const int16_t* const* block_rows, int count, int subsampling_x, int bit_depth, uint32_t* seams) {
     const int block_w = kBlockSize >> subsampling_x;
-    const int gmin = -(128 << (bit_depth - 8)), gmax = (128 << (bit_depth - 8)) - 1;
+    const GrainRange range = grain_range(bit_depth);
     auto pack = [](int a, int b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
     if (count > 0) seams[0] = pack(block_rows[0][0], block_rows[0][1]);
     for (int b = 1; b < count; ++b) {
         const int16_t* left = block_rows[b - 1] + block_w;
         const int16_t* cur = block_rows[b];
-        // Weights as build_noise_stripe (block_synthesis): 27/17 and 17/27 over two columns, 23/22 over one
-        // when subsampled.
-        const int s0 = subsampling_x ? std::clamp((left[0] * 23 + cur[0] * 22 + 16) >> 5, gmin, gmax)
-                                     : std::clamp((left[0] * 27 + cur[0] * 17 + 16) >> 5, gmin, gmax);
-        const int s1 = subsampling_x ? cur[1] : std::clamp((left[1] * 17 + cur[1] * 27 + 16) >> 5, gmin, gmax);
+        const int s0 = cross_fade(left[0], cur[0], overlap_weights(0, subsampling_x), range);
+        const int s1 = subsampling_x ? cur[1] : cross_fade(left[1], cur[1], overlap_weights(1, 0), range);
         seams[b] = pack(s0, s1);
     }
 }

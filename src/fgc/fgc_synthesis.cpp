@@ -193,7 +193,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
             const int32_t* offsets = table_offsets_[c].data();
             const Table* base = table0 + row_offset;
             for (; j < whole_blocks; j++)
-                block_row[j] = base + offsets[std::min<uint32_t>(uint32_t(sums[j]) >> avg_shift, 255)] + places[j];
+                block_row[j] = base + offsets[std::min<uint32_t>(sums[j] >> avg_shift, 255)] + places[j];
         }
         for (; j < columns; j++) {
             const int x0 = j * kBlock;
