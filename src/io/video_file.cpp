@@ -1,7 +1,6 @@
 #include "io/video_file.hpp"
 
 #include <limits.h>
-#include <sys/uio.h>
 #include <unistd.h>
 
 #include <bit>
@@ -199,7 +198,8 @@ void VideoWriter::write(const FrameView& frame) {
     if (y4m_) std::fwrite("FRAME\n", 1, 6, f_);
     if (std::fflush(f_) != 0) throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
     // One gathering write per IOV_MAX rows, straight from the picture's rows.
-    std::vector<iovec> rows;
+    std::vector<iovec>& rows = rows_;
+    rows.clear();
     for (int p = 0; p < frame.plane_count(); p++) {
         const std::size_t row_bytes = std::size_t(plane_width(frame.format, p, frame.width)) * std::size_t(bps);
         for (int y = 0; y < plane_height(frame.format, p, frame.height); y++)

@@ -1,9 +1,12 @@
 // Raw planar YUV and YUV4MPEG2 (Y4M) streams, read and written frame by frame so that a
 // file of any length is processed in constant memory. "-" is stdin / stdout.
 #pragma once
+#include <sys/uio.h>
+
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/frame_buffer.hpp"
 
@@ -57,6 +60,7 @@ private:
     VideoInfo info_;
     bool y4m_;
     bool committed_ = false;
+    std::vector<iovec> rows_;  // write(FrameView)'s row list, kept so frames do not allocate
 };
 
 bool has_y4m_extension(const std::string& path);
