@@ -19,7 +19,7 @@ void fill_block_states(uint32_t seed, int blocks_x, int blocks_y, std::vector<ui
     for (; i + 3 <= n; i += 3) {
         states[i] = s;
         states[i + 1] = lfsr_next(s);
-        states[i + 2] = (s << 2) | (~((s >> 1) ^ (s >> 29)) & 3u);
+        states[i + 2] = lfsr_next2(s);
         s = lfsr_next3(s);
     }
     for (; i < n; i++) {

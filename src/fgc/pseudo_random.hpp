@@ -10,10 +10,11 @@ inline uint32_t lfsr_next(uint32_t x) {
     return (x << 1) | feedback;
 }
 
-// Three steps at once. The feedback of step j < 3 reads bits 2 - j and 30 - j of the
-// starting state (the bits shifted in by the earlier steps sit below bit j), so all three
+// Two and three steps at once. The feedback of step j reads bits 2 - j and 30 - j of the
+// starting state (the bits shifted in by the earlier steps sit below bit j), so all the
 // feedback bits come from one XOR of the state with itself shifted right by 28, landing in
 // the order they are shifted in: x3 = lfsr_next(lfsr_next(lfsr_next(x))).
+inline uint32_t lfsr_next2(uint32_t x) { return (x << 2) | (~((x >> 1) ^ (x >> 29)) & 3u); }
 inline uint32_t lfsr_next3(uint32_t x) { return (x << 3) | (~(x ^ (x >> 28)) & 7u); }
 
 }  // namespace filmgrain::fgc

@@ -145,6 +145,7 @@ TEST(FgcRandomization, BlockStatesFollowTheOneStepChain) {
         ASSERT_EQ(st.size(), std::size_t(bx * by));
         uint32_t s = seed;
         for (std::size_t i = 0; i < st.size(); i++, s = lfsr_next(s)) ASSERT_EQ(st[i], s) << "seed " << seed << " i " << i;
+        EXPECT_EQ(lfsr_next2(seed), lfsr_next(lfsr_next(seed)));
         EXPECT_EQ(lfsr_next3(seed), lfsr_next(lfsr_next(lfsr_next(seed))));
     }
 }
