@@ -291,13 +291,19 @@ void check_frame_view(const FrameView& v, const char* name) {
     }
 }
 
-void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
-                      int matrix_coefficients) {
+namespace {
+void check_frame_pair(const FrameView& src, const FrameView& dst) {
     check_frame_view(src, "src");
     check_frame_view(dst, "dst");
     if (src.format != dst.format || src.bit_depth != dst.bit_depth || src.width != dst.width ||
         src.height != dst.height)
         throw Error(ErrorCode::kInvalidArgument, "src and dst frames differ in format, bit depth or size");
+}
+}  // namespace
+
+void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
+                      int matrix_coefficients) {
+    check_frame_pair(src, dst);
     const Av1SynthesisContext ctx(p, src.format, src.bit_depth, src.width, src.height, matrix_coefficients);
     ctx.apply_stripes(src, dst, 0, ctx.stripe_count());
 }
@@ -326,11 +332,7 @@ std::size_t Av1SynthesisContext::table_bytes() const {
 
 void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
                            int matrix_coefficients) {
-    check_frame_view(src, "src");
-    check_frame_view(dst, "dst");
-    if (src.format != dst.format || src.bit_depth != dst.bit_depth || src.width != dst.width ||
-        src.height != dst.height)
-        throw Error(ErrorCode::kInvalidArgument, "src and dst frames differ in format, bit depth or size");
+    check_frame_pair(src, dst);
     if (!context_)
         context_ = std::make_unique<Av1SynthesisContext>(p, src.format, src.bit_depth, src.width, src.height,
                                                          matrix_coefficients, kernels_);

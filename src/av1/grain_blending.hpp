@@ -42,26 +42,29 @@ void blend_luma_row(const Pixel* src, Pixel* dst, const int16_t* noise, int widt
     }
 }
 
-// One chroma row. `luma` is the clean (pre-grain) luma row co-sited with this
-// chroma row; with horizontal subsampling the two luma samples are averaged,
-// the right one clamped to the picture (odd widths repeat the last column).
+// The scaling index (`merged`) of chroma sample x with value `orig`. `luma` is the clean
+// (pre-grain) luma row co-sited with the chroma row; with horizontal subsampling the two luma
+// samples are averaged, the right one clamped to the picture (odd widths repeat the last
+// column).
+template <typename Pixel>
+int chroma_scaling_index(const Pixel* luma, int luma_width, int x, int subsampling_x, int orig,
+                         const ChromaScalingIndex& index, int bit_depth) {
+    const int lx = x << subsampling_x;
+    int average_luma = luma[lx];
+    if (subsampling_x) average_luma = (average_luma + luma[std::min(lx + 1, luma_width - 1)] + 1) >> 1;
+    if (index.from_luma) return average_luma;
+    const int combined = average_luma * index.luma_mult + orig * index.mult;
+    return std::clamp((combined >> 6) + index.offset * (1 << (bit_depth - 8)), 0, (1 << bit_depth) - 1);
+}
+
+// One chroma row (see chroma_scaling_index for `luma`).
 template <typename Pixel>
 void blend_chroma_row(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise,
                       int width, int subsampling_x, const ChromaScalingIndex& index, const ScalingLookup& scaling,
                       int scaling_shift, int bit_depth, int min_value, int max_value) {
-    const int pixel_max = (1 << bit_depth) - 1;
     for (int x = 0; x < width; ++x) {
-        const int lx = x << subsampling_x;
-        int average_luma = luma[lx];
-        if (subsampling_x) average_luma = (average_luma + luma[std::min(lx + 1, luma_width - 1)] + 1) >> 1;
         const int orig = src[x];
-        int merged;
-        if (index.from_luma) {
-            merged = average_luma;
-        } else {
-            const int combined = average_luma * index.luma_mult + orig * index.mult;
-            merged = std::clamp((combined >> 6) + index.offset * (1 << (bit_depth - 8)), 0, pixel_max);
-        }
+        const int merged = chroma_scaling_index(luma, luma_width, x, subsampling_x, orig, index, bit_depth);
         const int n = round2_signed(scaling(merged) * noise[x], scaling_shift);
         dst[x] = static_cast<Pixel>(std::clamp(orig + n, min_value, max_value));
     }

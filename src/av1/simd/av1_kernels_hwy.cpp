@@ -225,23 +225,9 @@ template <typename Pixel, class Scaled>
 void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const BlockNoiseRow& noise,
                        int x, int width, int subsampling_x, const ChromaScalingIndex& index, Scaled scaled,
                        int bit_depth, int min_value, int max_value) {
-    const int pixel_max = (1 << bit_depth) - 1;
     for (; x < width; ++x) {
-        const int lx = x << subsampling_x;
-        int average_luma = luma[lx];
-        if (subsampling_x) {
-            const int rx = lx + 1 < luma_width ? lx + 1 : luma_width - 1;
-            average_luma = (average_luma + luma[rx] + 1) >> 1;
-        }
         const int orig = src[x];
-        int merged;
-        if (index.from_luma) {
-            merged = average_luma;
-        } else {
-            const int combined = average_luma * index.luma_mult + orig * index.mult;
-            merged = (combined >> 6) + index.offset * (1 << (bit_depth - 8));
-            merged = merged < 0 ? 0 : merged > pixel_max ? pixel_max : merged;
-        }
+        const int merged = chroma_scaling_index(luma, luma_width, x, subsampling_x, orig, index, bit_depth);
         const int v = orig + scaled(merged, noise.at(x));
         dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
