@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -283,6 +284,16 @@ std::optional<StreamCodec> detect_stream_codec(const uint8_t* data, std::size_t 
     return std::nullopt;
 }
 
+const char* container_name(const uint8_t* data, std::size_t size) {
+    if (size >= 4 && data[0] == 0x1A && data[1] == 0x45 && data[2] == 0xDF && data[3] == 0xA3) return "Matroska/WebM";
+    if (size >= 8 && std::memcmp(data + 4, "ftyp", 4) == 0) return "MP4/QuickTime";
+    if (size >= 12 && std::memcmp(data, "RIFF", 4) == 0 && std::memcmp(data + 8, "AVI ", 4) == 0) return "AVI";
+    if (size >= 3 && std::memcmp(data, "FLV", 3) == 0) return "FLV";
+    // MPEG-2 TS: the sync byte 0x47 at the start of three consecutive 188-byte packets.
+    if (size >= 3 * 188 && data[0] == 0x47 && data[188] == 0x47 && data[376] == 0x47) return "MPEG transport stream";
+    return nullptr;
+}
+
 int StreamScan::bad_units() const {
     int n = 0;
     for (const AccessUnit& u : units) n += !u.warnings.empty();
@@ -298,6 +309,13 @@ StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> 
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(ErrorCode::kIo, "cannot open stream '" + path + "'");
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (const char* container = container_name(bytes.data(), bytes.size()))
+        throw Error(ErrorCode::kUnsupported,
+                    "'" + path + "' is a container file (" + container +
+                        "); inspect reads elementary streams (H.264/H.265/H.266 Annex B, AV1 IVF, low-overhead "
+                        "OBUs or Annex B): extract one with `ffmpeg -i " + path +
+                        " -c:v copy -f ivf out.ivf` (AV1) or `-f hevc out.hevc` (H.265), or decode it with "
+                        "`filmgrain decode`");
     if (!codec) codec = detect_stream_codec(bytes.data(), bytes.size(), path);
     if (!codec)
         throw Error(ErrorCode::kInvalidArgument,

@@ -24,6 +24,12 @@ StreamCodec parse_stream_codec(const std::string& name);  // also avc/hevc/vvc; 
 // extension; nullopt when neither tells.
 std::optional<StreamCodec> detect_stream_codec(const uint8_t* data, std::size_t size, const std::string& path);
 
+// The name of a multiplexed container the first bytes show ("Matroska/WebM", "MP4/QuickTime",
+// "MPEG transport stream", "AVI", "FLV"), nullptr for anything else. The scanner reads
+// elementary streams only; a container's boxes and packet headers would otherwise be
+// misread as start codes or OBUs and reported as damaged units.
+const char* container_name(const uint8_t* data, std::size_t size);
+
 struct FoundFgc {
     bool suffix = false;           // in a suffix SEI NAL unit
     std::vector<uint8_t> payload;  // the payloadType 19 body

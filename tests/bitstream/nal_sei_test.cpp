@@ -2,6 +2,10 @@
 // framing on hand-built inputs, including damaged ones.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "bitstream/av1_obu.hpp"
@@ -9,6 +13,7 @@
 #include "bitstream/nal_units.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "bitstream/stream_scan.hpp"
+#include "filmgrain/error.hpp"
 #include "metadata/fgc_sei.hpp"
 #include "stream_fixtures.hpp"
 
@@ -176,4 +181,37 @@ TEST(StreamScan, GarbageNeverCrashesAndIsReported) {
             for (const AccessUnit& u : scan.units) EXPECT_LE(u.offset, s.size());
         }
     }
+}
+
+// A Matroska, MP4 or transport stream file given to the scanner is named as such, not
+// scanned as a damaged elementary stream (its start bytes would pass for OBUs or NAL units).
+TEST(StreamScan, ContainerFilesAreNamedAndRefused) {
+    std::vector<uint8_t> mkv = {0x1A, 0x45, 0xDF, 0xA3, 0x9F, 0x42, 0x86, 0x81, 0x01};
+    std::vector<uint8_t> mp4 = {0, 0, 0, 0x20, 'f', 't', 'y', 'p', 'i', 's', 'o', 'm'};
+    std::vector<uint8_t> ts(3 * 188, 0xFF);
+    ts[0] = ts[188] = ts[376] = 0x47;
+    EXPECT_STREQ(container_name(mkv.data(), mkv.size()), "Matroska/WebM");
+    EXPECT_STREQ(container_name(mp4.data(), mp4.size()), "MP4/QuickTime");
+    EXPECT_STREQ(container_name(ts.data(), ts.size()), "MPEG transport stream");
+    const std::vector<uint8_t> ivf = {'D', 'K', 'I', 'F', 0, 0, 32, 0};
+    const std::vector<uint8_t> annexb = {0, 0, 0, 1, 0x40, 0x01, 0x0C};
+    EXPECT_EQ(container_name(ivf.data(), ivf.size()), nullptr);
+    EXPECT_EQ(container_name(annexb.data(), annexb.size()), nullptr);
+
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("filmgrain-container-" + std::to_string(::getpid()) + ".ivf"))
+                                 .string();
+    {
+        std::ofstream out(path, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(mkv.data()), std::streamsize(mkv.size()));
+    }
+    try {
+        scan_stream_file(path, StreamCodec::kAv1);
+        ADD_FAILURE() << "a Matroska file was scanned";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.code(), ErrorCode::kUnsupported);
+        EXPECT_NE(std::string(e.what()).find("Matroska/WebM"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("-f ivf"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(path);
 }
