@@ -312,7 +312,7 @@ StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> 
     if (const char* container = container_name(bytes.data(), bytes.size()))
         throw Error(ErrorCode::kUnsupported,
                     "'" + path + "' is a container file (" + container +
-                        "); inspect reads elementary streams (H.264/H.265/H.266 Annex B, AV1 IVF, low-overhead "
+                        "); inspect and params extract read elementary streams (H.264/H.265/H.266 Annex B, AV1 IVF, low-overhead "
                         "OBUs or Annex B): extract one with `ffmpeg -i " + path +
                         " -c:v copy -f ivf out.ivf` (AV1) or `-f hevc out.hevc` (H.265), or decode it with "
                         "`filmgrain decode`");
