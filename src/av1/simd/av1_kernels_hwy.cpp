@@ -240,15 +240,14 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // the LUT, the XOR over those steps leaves the wanted row. The indices from 128 up take a
 // second chain on index - 128. Three vector operations per 16 entries and no per-step
 // constants replace a scalar load and store per sample. The XOR'd rows are made once per
-// parameter set (ScalingLookup::lut8_chain()) and broadcast to whole vectors once per row,
-// so that the chain reads them with plain loads.
+// parameter set (ScalingLookup::lut8_chain()) and read by 16-byte broadcast loads where the
+// chain uses them (copying them to whole vectors once per row cost 1-2 % of a frame).
 template <class D8>
 struct ShuffleRows {
-    const uint8_t* lut;  // 256 entries
-    hn::Vec<D8> chain[16];
-    ShuffleRows(D8 d, const uint8_t* lut_in, const uint8_t* chain_in) : lut(lut_in) {
-        for (int j = 0; j < 16; ++j) chain[j] = hn::LoadDup128(d, chain_in + 16 * j);
-    }
+    const uint8_t* lut;         // 256 entries
+    const uint8_t* chain_rows;  // 16 XOR'd rows of 16 bytes
+    ShuffleRows(D8, const uint8_t* lut_in, const uint8_t* chain_in) : lut(lut_in), chain_rows(chain_in) {}
+    HWY_INLINE hn::Vec<D8> chain(int j) const { return hn::LoadDup128(D8(), chain_rows + 16 * j); }
 };
 
 // The bytes of kTables tables at the byte indices `index` (the 8-bit LUT alone, or above 8
@@ -279,15 +278,15 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
     auto lo = index, hi = hn::Xor(index, hn::Set(du8, uint8_t(0x80)));
     hn::Vec<D8> r_lo[kTables], r_hi[kTables];
     for (int t = 0; t < kTables; ++t) {
-        r_lo[t] = hn::TableLookupBytesOr0(tables[t]->chain[7], lo);
-        r_hi[t] = hn::TableLookupBytesOr0(tables[t]->chain[15], hi);
+        r_lo[t] = hn::TableLookupBytesOr0(tables[t]->chain(7), lo);
+        r_hi[t] = hn::TableLookupBytesOr0(tables[t]->chain(15), hi);
     }
     for (int j = 6; j >= 0; --j) {
         lo = hn::SaturatedAdd(lo, step);
         hi = hn::SaturatedAdd(hi, step);
         for (int t = 0; t < kTables; ++t) {
-            r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(tables[t]->chain[j], lo));
-            r_hi[t] = hn::Xor(r_hi[t], hn::TableLookupBytesOr0(tables[t]->chain[8 + j], hi));
+            r_lo[t] = hn::Xor(r_lo[t], hn::TableLookupBytesOr0(tables[t]->chain(j), lo));
+            r_hi[t] = hn::Xor(r_hi[t], hn::TableLookupBytesOr0(tables[t]->chain(8 + j), hi));
         }
     }
     for (int t = 0; t < kTables; ++t) out[t] = hn::Xor(r_lo[t], r_hi[t]);
