@@ -246,7 +246,7 @@ template <class D8>
 struct ShuffleRows {
     const uint8_t* lut;         // 256 entries
     const uint8_t* chain_rows;  // 16 XOR'd rows of 16 bytes
-    ShuffleRows(D8, const uint8_t* lut_in, const uint8_t* chain_in) : lut(lut_in), chain_rows(chain_in) {}
+    ShuffleRows(const uint8_t* lut_in, const uint8_t* chain_in) : lut(lut_in), chain_rows(chain_in) {}
     HWY_INLINE hn::Vec<D8> chain(int j) const { return hn::LoadDup128(D8(), chain_rows + 16 * j); }
 };
 
@@ -328,8 +328,8 @@ public:
     InterpolatedScales(const ScalingLookup& scaling, int bit_depth, int scaling_shift)
         :
 #if HWY_TARGET != HWY_SCALAR
-          lut_rows_(D8x(), scaling.table8().data(), scaling.lut8_chain()),
-          next_rows_(D8x(), scaling.next8(), scaling.next8_chain()),
+          lut_rows_(scaling.table8().data(), scaling.lut8_chain()),
+          next_rows_(scaling.next8(), scaling.next8_chain()),
 #endif
           full_(scaling.full_table()),
           bd_shift_(bit_depth - 8),
@@ -458,7 +458,7 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     HWY_ALIGN uint8_t scale[kChunk];
-    const ShuffleRows<D8> rows(D8(), scaling.table8().data(), scaling.lut8_chain());
+    const ShuffleRows<D8> rows(scaling.table8().data(), scaling.lut8_chain());
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         LookUpScaling8(src + x, scale, chunk, rows);
@@ -501,7 +501,7 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
-    const ShuffleRows<D8> rows(D8(), scaling.table8().data(), scaling.lut8_chain());
+    const ShuffleRows<D8> rows(scaling.table8().data(), scaling.lut8_chain());
     for (int x = 0; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         ChromaIndicesForTarget(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
