@@ -301,6 +301,35 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
     int k = 0;
     if (n >= 16) {
         const ShuffleRows<D8>* const tables[1] = {&rows};
+        // Two vectors share one three-row test (against the first one's first lane) and
+        // its row loads; where that fails each vector takes LookUpVector's own test.
+        const auto two = hn::Set(du8, uint8_t(2)), nibble = hn::Set(du8, uint8_t(15));
+        for (; k + 2 * n <= count; k += 2 * n) {
+            const auto a = hn::LoadU(du8, index + k), b = hn::LoadU(du8, index + k + n);
+            const int h0 = index[k] >> 4;
+            const auto first = hn::Set(du8, uint8_t(h0 - 1));  // wraps below 0
+            const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
+            if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
+                const auto below = hn::LoadDup128(du8, rows.lut + 16 * std::max(h0 - 1, 0));
+                const auto same = hn::LoadDup128(du8, rows.lut + 16 * h0);
+                const auto above = hn::LoadDup128(du8, rows.lut + 16 * std::min(h0 + 1, 15));
+                auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) {
+                    const auto low = hn::And(idx, nibble);
+                    return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
+                                          hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))),
+                                                         hn::TableLookupBytes(same, low),
+                                                         hn::TableLookupBytes(below, low)));
+                };
+                hn::StoreU(pick(a, rel_a), du8, out + k);
+                hn::StoreU(pick(b, rel_b), du8, out + k + n);
+                continue;
+            }
+            hn::Vec<D8> got[1];
+            LookUpVector<1>(du8, a, tables, got);
+            hn::StoreU(got[0], du8, out + k);
+            LookUpVector<1>(du8, b, tables, got);
+            hn::StoreU(got[0], du8, out + k + n);
+        }
         for (; k + n <= count; k += n) {
             hn::Vec<D8> got[1];
             LookUpVector<1>(du8, hn::LoadU(du8, index + k), tables, got);
