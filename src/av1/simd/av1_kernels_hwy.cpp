@@ -374,55 +374,105 @@ public:
 #if HWY_TARGET != HWY_SCALAR  // byte shuffles need whole 16-byte blocks
         const D16 d16;
         const hn::RebindToUnsigned<D16> du16;
-        const hn::Repartition<uint8_t, D16> du8;
         const int n = int(hn::Lanes(d16));
-        const auto two = hn::Set(du16, uint16_t(2)), nibble = hn::Set(du16, uint16_t(15));
-        const auto low_byte = hn::Set(du16, uint16_t(0x00FF)), high_byte = hn::Set(du16, uint16_t(0xFF00));
+        const auto two = hn::Set(du16, uint16_t(2));
         if (!by_rows_) return LookUpChunk(in, 0, count);
         int misses = 0;
-        for (; k + 2 * n <= count; k += 2 * n) {
-            const auto a = hn::LoadU(du16, in + k), b = hn::LoadU(du16, in + k + n);
+        // Two pairs share one row test (against the first sample of the first) and its row
+        // loads; where that fails each pair takes its own.
+        for (; k + 4 * n <= count; k += 4 * n) {
+            hn::Vec<decltype(du16)> v[4], rel[4];
             const int row = in[k] >> 4;
             const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
-            const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
-            hn::Vec<decltype(d16)> scale_a, scale_b;
-            // (A first sample beyond the bit depth, which would name a row past the table,
-            // takes the other form, whose byte indices cannot leave the LUT.)
-            if (row <= last_row_ &&
-                hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
-                const auto low = hn::BitCast(du8, hn::Or(hn::And(a, nibble), hn::ShiftLeft<8>(hn::And(b, nibble))));
-                const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
-                const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * std::max(row - 1, 0)), low);
-                const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * row), low);
-                const auto above =
-                    hn::TableLookupBytes(hn::LoadDup128(du8, full_ + 16 * std::min(row + 1, last_row_)), low);
-                const auto got = hn::BitCast(
-                    du16, hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(2))), above,
-                                         hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))), same, below)));
-                scale_a = hn::BitCast(d16, hn::And(got, low_byte));
-                scale_b = hn::BitCast(d16, hn::ShiftRight<8>(got));
-            } else {
-                ++misses;
-                // The top bytes of indices below 1 << bit_depth fit 8 bits (larger ones wrap).
-                const auto top = hn::Or(hn::And(hn::ShiftRightSame(a, bd_shift_), low_byte),
-                                        hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
-                hn::Vec<decltype(du8)> ends[2];
-                LookUpVector<2>(du8, hn::BitCast(du8, top), tables_, ends);
-                const auto s = hn::BitCast(du16, ends[0]), e = hn::BitCast(du16, ends[1]);
-                scale_a = Interpolate(hn::BitCast(d16, hn::And(s, low_byte)), hn::BitCast(d16, hn::And(e, low_byte)),
-                                      hn::BitCast(d16, a));
-                scale_b = Interpolate(hn::BitCast(d16, hn::ShiftRight<8>(s)), hn::BitCast(d16, hn::ShiftRight<8>(e)),
-                                      hn::BitCast(d16, b));
+            for (int g = 0; g < 4; ++g) {
+                v[g] = hn::LoadU(du16, in + k + g * n);
+                rel[g] = hn::Sub(hn::ShiftRight<4>(v[g]), first);
             }
-            hn::Store(hn::ShiftLeftSame(scale_a, up_shift_), d16, scale_ + k);
-            hn::Store(hn::ShiftLeftSame(scale_b, up_shift_), d16, scale_ + k + n);
+            const auto top = hn::Max(hn::Max(rel[0], rel[1]), hn::Max(rel[2], rel[3]));
+            if (row <= last_row_ && hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(top, two), hn::Zero(du16)))) {
+                const RowsAround rows = RowsAt(row);
+                StoreByRows(rows, v[0], v[1], rel[0], rel[1], k);
+                StoreByRows(rows, v[2], v[3], rel[2], rel[3], k + 2 * n);
+                continue;
+            }
+            misses += !LookUpPair(in, k);
+            misses += !LookUpPair(in, k + 2 * n);
         }
+        for (; k + 2 * n <= count; k += 2 * n) misses += !LookUpPair(in, k);
         // Noisy content: where more than half the pairs of a chunk missed the row test, the
         // rest of the row skips it.
         by_rows_ = 2 * misses * 2 * n <= k;
 #endif
         for (; k < count; ++k) scale_[k] = int16_t(Scalar(in[k]) << up_shift_);
     }
+#if HWY_TARGET != HWY_SCALAR
+    // The rows of the full table around `row` (row - 1, row, row + 1, within the table),
+    // each broadcast to every 16-byte block.
+    struct RowsAround {
+        hn::Vec<hn::Repartition<uint8_t, D16>> below, same, above;
+    };
+    HWY_INLINE RowsAround RowsAt(int row) const {
+        const hn::Repartition<uint8_t, D16> du8;
+        return {hn::LoadDup128(du8, full_ + 16 * std::max(row - 1, 0)), hn::LoadDup128(du8, full_ + 16 * row),
+                hn::LoadDup128(du8, full_ + 16 * std::min(row + 1, last_row_))};
+    }
+    // The q15 scales of the pair (a, b) into scale_[k, k + 2 * Lanes), every sample of it
+    // within `rows` (rel_a, rel_b: its row numbers relative to rows.below, 0..2). The two
+    // vectors' low nibbles share one byte vector (even and odd bytes), so nothing crosses
+    // lanes.
+    HWY_INLINE void StoreByRows(const RowsAround& rows, hn::Vec<hn::RebindToUnsigned<D16>> a,
+                                hn::Vec<hn::RebindToUnsigned<D16>> b, hn::Vec<hn::RebindToUnsigned<D16>> rel_a,
+                                hn::Vec<hn::RebindToUnsigned<D16>> rel_b, int k) {
+        const D16 d16;
+        const hn::RebindToUnsigned<D16> du16;
+        const hn::Repartition<uint8_t, D16> du8;
+        const int n = int(hn::Lanes(d16));
+        const auto nibble = hn::Set(du16, uint16_t(15)), low_byte = hn::Set(du16, uint16_t(0x00FF));
+        const auto low = hn::BitCast(du8, hn::Or(hn::And(a, nibble), hn::ShiftLeft<8>(hn::And(b, nibble))));
+        const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
+        const auto got = hn::BitCast(
+            du16, hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(2))), hn::TableLookupBytes(rows.above, low),
+                                 hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))),
+                                                hn::TableLookupBytes(rows.same, low),
+                                                hn::TableLookupBytes(rows.below, low))));
+        hn::Store(hn::ShiftLeftSame(hn::BitCast(d16, hn::And(got, low_byte)), up_shift_), d16, scale_ + k);
+        hn::Store(hn::ShiftLeftSame(hn::BitCast(d16, hn::ShiftRight<8>(got)), up_shift_), d16, scale_ + k + n);
+    }
+    // One pair at in[k, k + 2 * Lanes) into scale_: by its own row test (true) or from the
+    // two LUT entries and the interpolation (false).
+    HWY_INLINE bool LookUpPair(const uint16_t* in, int k) {
+        const D16 d16;
+        const hn::RebindToUnsigned<D16> du16;
+        const hn::Repartition<uint8_t, D16> du8;
+        const int n = int(hn::Lanes(d16));
+        const auto two = hn::Set(du16, uint16_t(2));
+        const auto low_byte = hn::Set(du16, uint16_t(0x00FF)), high_byte = hn::Set(du16, uint16_t(0xFF00));
+        const auto a = hn::LoadU(du16, in + k), b = hn::LoadU(du16, in + k + n);
+        const int row = in[k] >> 4;
+        const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
+        const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
+        // (A first sample beyond the bit depth, which would name a row past the table,
+        // takes the other form, whose byte indices cannot leave the LUT.)
+        if (row <= last_row_ &&
+            hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
+            StoreByRows(RowsAt(row), a, b, rel_a, rel_b, k);
+            return true;
+        }
+        // The top bytes of indices below 1 << bit_depth fit 8 bits (larger ones wrap).
+        const auto top = hn::Or(hn::And(hn::ShiftRightSame(a, bd_shift_), low_byte),
+                                hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
+        hn::Vec<decltype(du8)> ends[2];
+        LookUpVector<2>(du8, hn::BitCast(du8, top), tables_, ends);
+        const auto s = hn::BitCast(du16, ends[0]), e = hn::BitCast(du16, ends[1]);
+        const auto scale_a = Interpolate(hn::BitCast(d16, hn::And(s, low_byte)), hn::BitCast(d16, hn::And(e, low_byte)),
+                                         hn::BitCast(d16, a));
+        const auto scale_b = Interpolate(hn::BitCast(d16, hn::ShiftRight<8>(s)), hn::BitCast(d16, hn::ShiftRight<8>(e)),
+                                         hn::BitCast(d16, b));
+        hn::Store(hn::ShiftLeftSame(scale_a, up_shift_), d16, scale_ + k);
+        hn::Store(hn::ShiftLeftSame(scale_b, up_shift_), d16, scale_ + k + n);
+        return false;
+    }
+#endif
     HWY_INLINE hn::Vec<D16> At(int k) const { return hn::Load(D16(), scale_ + k); }
     // scale_lut(i), one sample (indices beyond the bit depth read the last entry).
     int Scalar(int i) const { return full_[std::min(i, index_max_)]; }
