@@ -347,24 +347,29 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
             const int h0 = index[k] >> 4;
             const auto first = hn::Set(du8, uint8_t(h0 - 1));  // wraps below 0
             const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
+            const auto below = hn::LoadDup128(du8, rows.lut + 16 * std::max(h0 - 1, 0));
+            const auto same = hn::LoadDup128(du8, rows.lut + 16 * h0);
+            const auto above = hn::LoadDup128(du8, rows.lut + 16 * std::min(h0 + 1, 15));
+            auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) {
+                const auto low = hn::And(idx, nibble);
+                return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
+                                      hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))),
+                                                     hn::TableLookupBytes(same, low),
+                                                     hn::TableLookupBytes(below, low)));
+            };
             if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
-                const auto below = hn::LoadDup128(du8, rows.lut + 16 * std::max(h0 - 1, 0));
-                const auto same = hn::LoadDup128(du8, rows.lut + 16 * h0);
-                const auto above = hn::LoadDup128(du8, rows.lut + 16 * std::min(h0 + 1, 15));
-                auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) {
-                    const auto low = hn::And(idx, nibble);
-                    return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
-                                          hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))),
-                                                         hn::TableLookupBytes(same, low),
-                                                         hn::TableLookupBytes(below, low)));
-                };
                 hn::StoreU(pick(a, rel_a), du8, out + k);
                 hn::StoreU(pick(b, rel_b), du8, out + k + n);
                 continue;
             }
+            // The first vector may still lie within those rows (its own test is the same).
             hn::Vec<D8> got[1];
-            LookUpVector<1>(du8, a, tables, got);
-            hn::StoreU(got[0], du8, out + k);
+            if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel_a, two), hn::Zero(du8)))) {
+                hn::StoreU(pick(a, rel_a), du8, out + k);
+            } else {
+                LookUpVector<1>(du8, a, tables, got);
+                hn::StoreU(got[0], du8, out + k);
+            }
             LookUpVector<1>(du8, b, tables, got);
             hn::StoreU(got[0], du8, out + k + n);
         }
