@@ -294,6 +294,32 @@ TEST_P(SimdEquivalence, Av1BlendLumaAndChroma) {
     }
 }
 
+// The 8-bit chroma scaling index where luma * luma_mult + chroma * mult leaves int16 (the
+// AVX2 kernel's saturating multiply-add must still give the clipped index of the spec):
+// extreme multipliers and offsets on all-bright, all-dark and alternating samples.
+TEST_P(SimdEquivalence, Av1ChromaIndexAtExtremeMultipliers8Bit) {
+    const int width = 300, luma_width = 2 * width;
+    const av1::ScalingLookup scaling = random_scaling(rng, 8);
+    const RandomBlockNoise noise(width, 16, 8, rng);
+    for (int lm : {-128, -127, -1, 0, 127})
+        for (int m : {-128, -64, 0, 100, 127})
+            for (int offset : {-256, -1, 0, 255})
+                for (int pattern = 0; pattern < 4; ++pattern) {
+                    std::vector<uint8_t> src(width), luma(luma_width), want(width), got(width);
+                    for (int i = 0; i < width; ++i)
+                        src[std::size_t(i)] = uint8_t(pattern == 0 ? 255 : pattern == 1 ? 0 : pattern == 2 ? (i & 1) * 255 : uniform(0, 255));
+                    for (int i = 0; i < luma_width; ++i)
+                        luma[std::size_t(i)] = uint8_t(pattern == 0 ? 255 : pattern == 1 ? 0 : pattern == 2 ? ((i >> 1) & 1) * 255 : uniform(0, 255));
+                    const av1::ChromaScalingIndex index{false, lm, m, offset};
+                    av1::blend_chroma_row<uint8_t>(src.data(), want.data(), luma.data(), luma_width, noise.flat.data(),
+                                                   width, 1, index, scaling, 9, 8, 0, 255);
+                    av1::simd::blend_chroma_row_u8(src.data(), got.data(), luma.data(), luma_width, noise.row, width, 1,
+                                                   index, scaling, 9, 8, 0, 255);
+                    ASSERT_EQ(got, want) << "luma_mult " << lm << " mult " << m << " offset " << offset << " pattern "
+                                         << pattern;
+                }
+}
+
 Av1FilmGrainParams random_av1_params(std::mt19937& rng, int bd, bool mono) {
     auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
     Av1FilmGrainParams p;

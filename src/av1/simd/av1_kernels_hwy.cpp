@@ -229,6 +229,23 @@ HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int 
                 orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(hn::Rebind<uint8_t, D16>(), src + cx)));
             else
                 orig = hn::BitCast(d16, hn::LoadU(du16, src + cx));
+#if HWY_TARGET == HWY_AVX2
+            // 8 bits: (luma, chroma) as the two bytes of each 16-bit lane and one unsigned x
+            // signed byte multiply-add (pmaddubsw; Highway 1.0 has none). Its sum saturates
+            // at int16, but only where the exact index is clipped anyway: 32767 >> 6 = 511
+            // and -32768 >> 6 = -512 stay beyond 0..255 after any offset in -256..255.
+            if constexpr (sizeof(Pixel) == 1) {
+                const __m256i byte_mults = _mm256_set1_epi16(
+                    int16_t(uint16_t(uint8_t(index.luma_mult)) | uint16_t(uint16_t(uint8_t(index.mult)) << 8)));
+                const hn::Vec<D16> sum{_mm256_maddubs_epi16(hn::Or(m, hn::ShiftLeft<8>(orig)).raw, byte_mults)};
+                m = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(sum), offset), hn::Zero(d16)), pixel_max);
+                if constexpr (sizeof(Out) == 1)
+                    hn::Store(hn::DemoteTo(hn::Rebind<uint8_t, D16>(), m), hn::Rebind<uint8_t, D16>(), out + k);
+                else
+                    hn::Store(m, d16, out + k);
+                continue;
+            }
+#endif
             auto sum1 = hn::Zero(d32);
             auto lo = hn::ReorderWidenMulAccumulate(d32, hn::InterleaveLower(d16, m, orig), mults, hn::Zero(d32), sum1);
             lo = hn::RearrangeToOddPlusEven(lo, sum1);
