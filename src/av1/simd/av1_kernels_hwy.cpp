@@ -238,11 +238,12 @@ HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int 
                 const __m256i byte_mults = _mm256_set1_epi16(
                     int16_t(uint16_t(uint8_t(index.luma_mult)) | uint16_t(uint16_t(uint8_t(index.mult)) << 8)));
                 const hn::Vec<D16> sum{_mm256_maddubs_epi16(hn::Or(m, hn::ShiftLeft<8>(orig)).raw, byte_mults)};
-                m = hn::Min(hn::Max(hn::Add(hn::ShiftRight<6>(sum), offset), hn::Zero(d16)), pixel_max);
+                m = hn::Add(hn::ShiftRight<6>(sum), offset);
+                // (Narrowing to bytes saturates to 0..255: that is the clip.)
                 if constexpr (sizeof(Out) == 1)
                     hn::Store(hn::DemoteTo(hn::Rebind<uint8_t, D16>(), m), hn::Rebind<uint8_t, D16>(), out + k);
                 else
-                    hn::Store(m, d16, out + k);
+                    hn::Store(hn::Min(hn::Max(m, hn::Zero(d16)), pixel_max), d16, out + k);
                 continue;
             }
 #endif
