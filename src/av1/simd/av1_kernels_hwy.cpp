@@ -20,7 +20,9 @@ using D16 = hn::CappedTag<int16_t, 16>;
 using D32 = hn::CappedTag<int32_t, 8>;  // as many lanes as D16 has, or half
 constexpr int kChunk = 256;             // samples looked up at once
 
-// Constants of the horizontal overlap fade, made once per row.
+// Constants of the horizontal overlap fade, made once per row. The weights of lanes 2 and up
+// are (0, 32): there the fade below gives back the block's own noise, (32 * own + 16) >> 5,
+// already within the grain range, so no blend puts lanes 0 and 1 back into it.
 struct FadeConstants {
     hn::Vec<D16> w_old, w_new, gmin, gmax;
 };
@@ -29,13 +31,17 @@ HWY_INLINE FadeConstants FadeConstantsOf(const BlockNoiseRow& row) {
     const D16 d16;
     const hn::Repartition<uint32_t, D16> d32;
     auto pair = [](int16_t a, int16_t b) { return uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16; };
-    return {hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1]))),
-            hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))), hn::Set(d16, row.gmin),
-            hn::Set(d16, row.gmax)};
+    const auto first_two = hn::FirstN(d16, 2);
+    return {hn::IfThenElseZero(first_two, hn::BitCast(d16, hn::Set(d32, pair(row.fade_old[0], row.fade_old[1])))),
+            hn::IfThenElse(first_two, hn::BitCast(d16, hn::Set(d32, pair(row.fade_new[0], row.fade_new[1]))),
+                           hn::Set(d16, int16_t(32))),
+            hn::Set(d16, row.gmin), hn::Set(d16, row.gmax)};
 }
 
 // The first vector of block b's noise: its first two lanes replaced by the horizontal overlap
-// with the left block (7.18.3.5), given as seams or faded here. At least two lanes.
+// with the left block (7.18.3.5), given as seams or faded here. At least two lanes. The
+// fade's Round2(sum, 5) is a rounding high multiply by 1 << 10; the sums fit 16 bits up to
+// 10 bits (|noise| <= 512, weights summing to at most 45), the depths that fade here.
 HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own,
                                           const FadeConstants& c) {
     const hn::Repartition<uint32_t, D16> d32;
@@ -44,8 +50,8 @@ HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int
     uint32_t left_pair;
     std::memcpy(&left_pair, row.blocks[b - 1] + row.block_width, sizeof left_pair);
     const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
-    const auto sum = hn::Add(hn::Add(hn::Mul(left, c.w_old), hn::Mul(own, c.w_new)), hn::Set(d16, 16));
-    return hn::IfThenElse(hn::FirstN(d16, 2), hn::Min(hn::Max(hn::ShiftRight<5>(sum), c.gmin), c.gmax), own);
+    const auto sum = hn::Add(hn::Mul(left, c.w_old), hn::Mul(own, c.w_new));
+    return hn::Min(hn::Max(hn::MulFixedPoint15(sum, hn::Set(d16, int16_t(1 << 10))), c.gmin), c.gmax);
 }
 
 // dst = clip(src + Round2(scale * noise, shift)) for `count` samples from x (x a multiple
