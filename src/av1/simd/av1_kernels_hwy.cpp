@@ -304,6 +304,16 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // constants replace a scalar load and store per sample. The XOR'd rows are made once per
 // parameter set (ScalingLookup::lut8_chain()) and read by 16-byte broadcast loads where the
 // chain uses them (copying them to whole vectors once per row cost 1-2 % of a frame).
+// Three 16-entry table rows broadcast to every 16-byte block: the entry at each byte's low
+// nibble `low` in the row `rel` names (0 the one below, 1 the same, 2 the one above).
+template <class D8>
+HWY_INLINE hn::Vec<D8> FromThreeRows(D8 du8, hn::Vec<D8> below, hn::Vec<D8> same, hn::Vec<D8> above,
+                                     hn::Vec<D8> low, hn::Vec<D8> rel) {
+    return hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(2))), hn::TableLookupBytes(above, low),
+                          hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))), hn::TableLookupBytes(same, low),
+                                         hn::TableLookupBytes(below, low)));
+}
+
 template <class D8>
 struct ShuffleRows {
     const uint8_t* lut;         // 256 entries
@@ -326,13 +336,11 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
     const auto two = hn::Set(du8, uint8_t(2));
     if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel, two), hn::Zero(du8)))) {
         const auto low = hn::And(index, hn::Set(du8, uint8_t(15)));
-        const auto is_same = hn::Eq(rel, hn::Set(du8, uint8_t(1))), is_above = hn::Eq(rel, two);
         for (int t = 0; t < kTables; ++t) {
             const uint8_t* lut = tables[t]->lut;
-            const auto below = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * std::max(h0 - 1, 0)), low);
-            const auto same = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * h0), low);
-            const auto above = hn::TableLookupBytes(hn::LoadDup128(du8, lut + 16 * std::min(h0 + 1, 15)), low);
-            out[t] = hn::IfThenElse(is_above, above, hn::IfThenElse(is_same, same, below));
+            out[t] = FromThreeRows(du8, hn::LoadDup128(du8, lut + 16 * std::max(h0 - 1, 0)),
+                                   hn::LoadDup128(du8, lut + 16 * h0),
+                                   hn::LoadDup128(du8, lut + 16 * std::min(h0 + 1, 15)), low, rel);
         }
         return;
     }
@@ -375,11 +383,7 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
             const auto same = hn::LoadDup128(du8, rows.lut + 16 * h0);
             const auto above = hn::LoadDup128(du8, rows.lut + 16 * std::min(h0 + 1, 15));
             auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) {
-                const auto low = hn::And(idx, nibble);
-                return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
-                                      hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))),
-                                                     hn::TableLookupBytes(same, low),
-                                                     hn::TableLookupBytes(below, low)));
+                return FromThreeRows(du8, below, same, above, hn::And(idx, nibble), rel);
             };
             if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
                 hn::StoreU(pick(a, rel_a), du8, out + k);
@@ -497,11 +501,7 @@ public:
         const auto nibble = hn::Set(du16, uint16_t(15)), low_byte = hn::Set(du16, uint16_t(0x00FF));
         const auto low = hn::BitCast(du8, hn::Or(hn::And(a, nibble), hn::ShiftLeft<8>(hn::And(b, nibble))));
         const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
-        const auto got = hn::BitCast(
-            du16, hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(2))), hn::TableLookupBytes(rows.above, low),
-                                 hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))),
-                                                hn::TableLookupBytes(rows.same, low),
-                                                hn::TableLookupBytes(rows.below, low))));
+        const auto got = hn::BitCast(du16, FromThreeRows(du8, rows.below, rows.same, rows.above, low, rel));
         hn::Store(hn::ShiftLeftSame(hn::BitCast(d16, hn::And(got, low_byte)), up_shift_), d16, scale_ + k);
         hn::Store(hn::ShiftLeftSame(hn::BitCast(d16, hn::ShiftRight<8>(got)), up_shift_), d16, scale_ + k + n);
     }
