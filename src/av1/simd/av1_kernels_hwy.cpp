@@ -213,6 +213,10 @@ HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int 
                                                           uint32_t(uint16_t(index.mult)) << 16));
     const auto offset = hn::Set(d16, int16_t(index.offset * (1 << (bit_depth - 8))));
     const auto pixel_max = hn::Set(d16, int16_t((1 << bit_depth) - 1));
+#if HWY_TARGET == HWY_AVX2
+    [[maybe_unused]] const __m256i byte_mults =
+        _mm256_set1_epi16(int16_t(uint16_t(uint8_t(index.luma_mult)) | uint16_t(uint16_t(uint8_t(index.mult)) << 8)));
+#endif
     for (int k = 0; k < count; k += n) {
         const int cx = x + k;
         hn::Vec<decltype(du16)> avg;
@@ -241,26 +245,24 @@ HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int 
             // at int16, but only where the exact index is clipped anyway: 32767 >> 6 = 511
             // and -32768 >> 6 = -512 stay beyond 0..255 after any offset in -256..255.
             if constexpr (sizeof(Pixel) == 1) {
-                const __m256i byte_mults = _mm256_set1_epi16(
-                    int16_t(uint16_t(uint8_t(index.luma_mult)) | uint16_t(uint16_t(uint8_t(index.mult)) << 8)));
                 const hn::Vec<D16> sum{_mm256_maddubs_epi16(hn::Or(m, hn::ShiftLeft<8>(orig)).raw, byte_mults)};
                 m = hn::Add(hn::ShiftRight<6>(sum), offset);
-                // (Narrowing to bytes saturates to 0..255: that is the clip.)
-                if constexpr (sizeof(Out) == 1)
-                    hn::Store(hn::DemoteTo(hn::Rebind<uint8_t, D16>(), m), hn::Rebind<uint8_t, D16>(), out + k);
-                else
-                    hn::Store(hn::Min(hn::Max(m, hn::Zero(d16)), pixel_max), d16, out + k);
-                continue;
-            }
+                // Narrowing to bytes saturates to 0..255, which is the clip.
+                if constexpr (sizeof(Out) != 1) m = hn::Min(hn::Max(m, hn::Zero(d16)), pixel_max);
+            } else
 #endif
-            auto sum1 = hn::Zero(d32);
-            auto lo = hn::ReorderWidenMulAccumulate(d32, hn::InterleaveLower(d16, m, orig), mults, hn::Zero(d32), sum1);
-            lo = hn::RearrangeToOddPlusEven(lo, sum1);
-            auto sum1h = hn::Zero(d32);
-            auto hi = hn::ReorderWidenMulAccumulate(d32, hn::InterleaveUpper(d16, m, orig), mults, hn::Zero(d32), sum1h);
-            hi = hn::RearrangeToOddPlusEven(hi, sum1h);
-            m = hn::ReorderDemote2To(d16, hn::ShiftRight<6>(lo), hn::ShiftRight<6>(hi));
-            m = hn::Min(hn::Max(hn::Add(m, offset), hn::Zero(d16)), pixel_max);
+            {
+                auto sum1 = hn::Zero(d32);
+                auto lo =
+                    hn::ReorderWidenMulAccumulate(d32, hn::InterleaveLower(d16, m, orig), mults, hn::Zero(d32), sum1);
+                lo = hn::RearrangeToOddPlusEven(lo, sum1);
+                auto sum1h = hn::Zero(d32);
+                auto hi =
+                    hn::ReorderWidenMulAccumulate(d32, hn::InterleaveUpper(d16, m, orig), mults, hn::Zero(d32), sum1h);
+                hi = hn::RearrangeToOddPlusEven(hi, sum1h);
+                m = hn::ReorderDemote2To(d16, hn::ShiftRight<6>(lo), hn::ShiftRight<6>(hi));
+                m = hn::Min(hn::Max(hn::Add(m, offset), hn::Zero(d16)), pixel_max);
+            }
         }
         if constexpr (sizeof(Out) == 1)
             hn::Store(hn::DemoteTo(hn::Rebind<uint8_t, D16>(), m), hn::Rebind<uint8_t, D16>(), out + k);
