@@ -84,13 +84,30 @@ void StripeScratch::reserve(int luma_width) {
     if (noise.size() < pitch * 2) noise.resize(pitch * 2);
     if (previous.size() < pitch * 2) previous.resize(pitch * 2);
     if (origins.size() < blocks) origins.resize(blocks);
+    if (previous_origins.size() < blocks) previous_origins.resize(blocks);
     if (block_rows.size() < blocks) block_rows.resize(blocks);
+    if (previous_block_rows.size() < blocks) previous_block_rows.resize(blocks);
     if (seams.size() < blocks) seams.resize(blocks);
+    for (DrawnOffsets& d : drawn_)
+        if (d.bytes.size() < blocks) d.bytes.resize(blocks);
+}
+
+const uint8_t* StripeScratch::block_offsets(int grain_seed, int stripe, int blocks) {
+    DrawnOffsets& d = drawn_[stripe & 1];
+    if (d.grain_seed != grain_seed || d.stripe != stripe || d.blocks != blocks) {
+        if (d.bytes.size() < std::size_t(blocks)) d.bytes.resize(std::size_t(blocks));
+        fill_stripe_block_offsets(grain_seed, stripe, blocks, d.bytes.data());
+        d.grain_seed = grain_seed, d.stripe = stripe, d.blocks = blocks;
+    }
+    return d.bytes.data();
 }
 
 std::size_t StripeScratch::bytes() const {
-    return (noise.capacity() + previous.capacity()) * sizeof(int16_t) + origins.capacity() * sizeof(int32_t) +
-           block_rows.capacity() * sizeof(const int16_t*) + seams.capacity() * sizeof(uint32_t);
+    return (noise.capacity() + previous.capacity()) * sizeof(int16_t) +
+           (origins.capacity() + previous_origins.capacity()) * sizeof(int32_t) +
+           (block_rows.capacity() + previous_block_rows.capacity()) * sizeof(const int16_t*) +
+           seams.capacity() * sizeof(uint32_t) +
+           drawn_[0].bytes.capacity() + drawn_[1].bytes.capacity();
 }
 
 int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
@@ -160,7 +177,6 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const int pw = plane_width(format_, pl, width_);
         const int shared_rows = overlap && stripe > 0 ? std::min(rows, 2 >> sy) : 0;
         simd::BlockNoiseRow row;
-        row.blocks = scratch.block_rows.data();
         row.block_width = block_w;
         // The horizontal overlap is faded inside the kernels where 16-bit lanes hold it, else
         // precomputed per row (12 bits).
@@ -170,45 +186,55 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             row.fade_old[k] = int16_t(w.old_weight), row.fade_new[k] = int16_t(w.new_weight);
         }
         row.gmin = int16_t(range.min), row.gmax = int16_t(range.max);
-        // Row `i` of the blocks at `origins`, as it reads the template.
-        auto point_at_template_row = [&](const int32_t* origins, int i) {
+        // Row `i` of the blocks at `origins`, as it reads the template, through `pointers`.
+        auto template_row = [&](const int32_t* origins, int i, const int16_t** pointers) {
+            simd::BlockNoiseRow r = row;
             const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
-            for (int b = 0; b < blocks; ++b) scratch.block_rows[std::size_t(b)] = t + origins[b];
-            row.fade = fade_in_kernel;
-            row.seams = nullptr;
+            for (int b = 0; b < blocks; ++b) pointers[b] = t + origins[b];
+            r.blocks = pointers;
+            r.fade = fade_in_kernel;
             if (overlap && !fade_in_kernel) {
-                overlap_seams(scratch.block_rows.data(), blocks, sx, bit_depth_, scratch.seams.data());
-                row.seams = scratch.seams.data();
+                overlap_seams(pointers, blocks, sx, bit_depth_, scratch.seams.data());
+                r.seams = scratch.seams.data();
             }
+            return r;
         };
-        if (shared_rows) {
-            // The previous stripe's blocks continue below it for the vertical overlap.
-            stripe_block_origins(tmpl, p_.grain_seed, stripe - 1, width_, sx, sy, scratch.origins.data());
-            const int stripe_h = kBlockSize >> sy;
-            for (int i = 0; i < shared_rows; ++i) {
-                point_at_template_row(scratch.origins.data(), stripe_h + i);
-                simd::assemble_noise_row(row, pw, scratch.previous.data() + pitch * std::size_t(i));
-            }
-        }
-        stripe_block_origins(tmpl, p_.grain_seed, stripe, width_, sx, sy, scratch.origins.data());
+        // The previous stripe's blocks continue below it for the vertical overlap.
+        if (shared_rows)
+            stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe - 1, blocks), blocks, sx, sy,
+                                 scratch.previous_origins.data());
+        stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe, blocks), blocks, sx, sy,
+                             scratch.origins.data());
+        const int stripe_h = kBlockSize >> sy;
         for (int i = 0; i < shared_rows; ++i) {
             int16_t* cur = scratch.noise.data() + pitch * std::size_t(i);
-            point_at_template_row(scratch.origins.data(), i);
-            simd::assemble_noise_row(row, pw, cur);
             const OverlapWeights w = overlap_weights(i, sy);
-            simd::cross_fade_row(scratch.previous.data() + pitch * std::size_t(i), cur, pw, w.old_weight,
-                                 w.new_weight, range.min, range.max);
+            if (fade_in_kernel) {
+                simd::assemble_cross_faded_row(
+                    template_row(scratch.previous_origins.data(), stripe_h + i, scratch.previous_block_rows.data()),
+                    template_row(scratch.origins.data(), i, scratch.block_rows.data()), pw, w.old_weight,
+                    w.new_weight, cur);
+                continue;
+            }
+            // 12 bits: the rows one after the other (they share scratch.seams), faded in 32-bit lanes.
+            int16_t* above = scratch.previous.data() + pitch * std::size_t(i);
+            simd::assemble_noise_row(
+                template_row(scratch.previous_origins.data(), stripe_h + i, scratch.previous_block_rows.data()), pw,
+                above);
+            simd::assemble_noise_row(template_row(scratch.origins.data(), i, scratch.block_rows.data()), pw, cur);
+            simd::cross_fade_row(above, cur, pw, w.old_weight, w.new_weight, range.min, range.max);
         }
         for (int i = 0; i < rows; ++i) {
             if (i < shared_rows) {
+                // The faded row, contiguous: no overlap left to apply.
+                simd::BlockNoiseRow r = row;
                 for (int b = 0; b < blocks; ++b)
                     scratch.block_rows[std::size_t(b)] = scratch.noise.data() + pitch * std::size_t(i) + b * block_w;
-                row.seams = nullptr;
-                row.fade = false;
+                r.blocks = scratch.block_rows.data();
+                blend_row(i, r);
             } else {
-                point_at_template_row(scratch.origins.data(), i);
+                blend_row(i, template_row(scratch.origins.data(), i, scratch.block_rows.data()));
             }
-            blend_row(i, row);
         }
     };
 

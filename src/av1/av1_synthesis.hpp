@@ -26,20 +26,31 @@ namespace filmgrain::av1 {
 // run time for the CPU, allocation-free stripe buffers). Both give identical output.
 enum class Kernels { kOptimized, kReference };
 
-// Working memory of the optimized path for one thread: the noise rows of one stripe of
-// the widest plane and the previous stripe's overlap rows. Reused across stripes and frames.
-// A stripe worker's memory: the two noise rows a stripe shares with the one above and the
-// two rows they fade from, and per block its template origin, template row and overlap seam.
+// A stripe worker's memory, reused across stripes and frames: the two noise rows a stripe
+// shares with the one above (and at 12 bits the two rows they fade from), per block its
+// template origin and template row in this stripe and in the one above, and its overlap seam.
 struct StripeScratch {
     std::vector<int16_t> noise;
     std::vector<int16_t> previous;
-    std::vector<int32_t> origins;
-    std::vector<const int16_t*> block_rows;
+    std::vector<int32_t> origins, previous_origins;
+    std::vector<const int16_t*> block_rows, previous_block_rows;
     std::vector<uint32_t> seams;
 
     // Sizes everything for pictures `luma_width` wide (no-op once large enough).
     void reserve(int luma_width);
     std::size_t bytes() const;
+
+    // The random byte of every block of `stripe` (stripe_block_offsets). Every plane of a
+    // stripe uses them, and with overlap the next stripe again, so the last two stripes'
+    // are kept (keyed by seed and stripe: the scratch outlives frames).
+    const uint8_t* block_offsets(int grain_seed, int stripe, int blocks);
+
+private:
+    struct DrawnOffsets {
+        int grain_seed = -1, stripe = -1, blocks = 0;
+        std::vector<uint8_t> bytes;
+    };
+    DrawnOffsets drawn_[2];
 };
 
 class Av1SynthesisContext {

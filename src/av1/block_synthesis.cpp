@@ -8,10 +8,14 @@
 namespace filmgrain::av1 {
 
 std::vector<uint8_t> stripe_block_offsets(int grain_seed, int stripe, int blocks_across) {
-    RandomNumberGenerator rng(stripe_seed(grain_seed, stripe));
     std::vector<uint8_t> out(static_cast<std::size_t>(blocks_across));
-    for (auto& v : out) v = static_cast<uint8_t>(rng.get(8));
+    fill_stripe_block_offsets(grain_seed, stripe, blocks_across, out.data());
     return out;
+}
+
+void fill_stripe_block_offsets(int grain_seed, int stripe, int blocks_across, uint8_t* out) {
+    RandomNumberGenerator rng(stripe_seed(grain_seed, stripe));
+    for (int b = 0; b < blocks_across; ++b) out[b] = static_cast<uint8_t>(rng.get(8));
 }
 
 NoiseStripe build_noise_stripe(const GrainTemplate& tmpl, const std::vector<uint8_t>& offsets, int subsampling_x,

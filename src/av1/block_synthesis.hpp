@@ -40,6 +40,7 @@ inline int cross_fade(int old_value, int new_value, OverlapWeights w, GrainRange
 // The high nibble is the horizontal template offset, the low nibble the vertical.
 // All planes share them.
 std::vector<uint8_t> stripe_block_offsets(int grain_seed, int stripe, int blocks_across);
+void fill_stripe_block_offsets(int grain_seed, int stripe, int blocks_across, uint8_t* out);
 
 // The spec's noiseStripe for one plane: (34 >> suby) rows, every block written
 // with its two extra overlap columns (one when subsampled) and, with

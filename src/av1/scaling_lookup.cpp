@@ -8,6 +8,15 @@ ScalingLookup::ScalingLookup(const int* point_value, const int* point_scaling, i
 }
 
 void ScalingLookup::assign(const int* point_value, const int* point_scaling, int count, int bit_depth) {
+    if (count == built_count_ && bit_depth == bit_depth_ && !full_.empty() &&
+        std::equal(point_value, point_value + count, built_value_.begin()) &&
+        std::equal(point_scaling, point_scaling + count, built_scaling_.begin()))
+        return;
+    built_count_ = -1;
+    if (count >= 0 && count <= kMaxKeptPoints) {
+        std::copy_n(point_value, count, built_value_.begin());
+        std::copy_n(point_scaling, count, built_scaling_.begin());
+    }
     // assign() keeps the vectors' capacity, so rebuilding per frame does not allocate.
     bit_depth_ = bit_depth;
     lut8_.assign(256, 0);
@@ -54,6 +63,7 @@ void ScalingLookup::assign(const int* point_value, const int* point_scaling, int
         lut8_chain_[i] = static_cast<uint8_t>(lut8_[i] ^ (chained ? lut8_[i + 16] : 0));
         next8_chain_[i] = static_cast<uint8_t>(next8_[i] ^ (chained ? next8_[i + 16] : 0));
     }
+    if (count >= 0 && count <= kMaxKeptPoints) built_count_ = count;
 }
 
 }  // namespace filmgrain::av1

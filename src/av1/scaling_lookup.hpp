@@ -46,6 +46,11 @@ private:
     std::vector<uint8_t> lut8_;
     std::vector<uint8_t> full_;  // precomputed scale_lut over the whole bit-depth range
     std::array<uint8_t, 256> next8_{}, lut8_chain_{}, next8_chain_{};
+    // The points the tables were built from: a stream usually repeats them frame after
+    // frame (only the seed changes), and then assign() has nothing to rebuild.
+    static constexpr int kMaxKeptPoints = 16;
+    int built_count_ = -1;
+    std::array<int, kMaxKeptPoints> built_value_{}, built_scaling_{};
 };
 
 }  // namespace filmgrain::av1

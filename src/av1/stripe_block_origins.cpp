@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "av1/block_synthesis.hpp"
-#include "av1/random_number.hpp"
 
 namespace filmgrain::av1 {
 
@@ -13,12 +12,10 @@ int noise_stripe_width(int luma_width, int subsampling_x) {
     return num_blocks_across(luma_width) * block_w + (copy_w - block_w);
 }
 
-void stripe_block_origins(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
+void stripe_block_origins(const GrainTemplate& tmpl, const uint8_t* offsets, int blocks, int subsampling_x,
                           int subsampling_y, int32_t* origins) {
-    RandomNumberGenerator rng(stripe_seed(grain_seed, stripe));
-    for (int b = 0; b < num_blocks_across(luma_width); ++b) {
-        const int rand = rng.get(8);
-        const int offset_x = rand >> 4, offset_y = rand & 15;
+    for (int b = 0; b < blocks; ++b) {
+        const int offset_x = offsets[b] >> 4, offset_y = offsets[b] & 15;
         const int tx = subsampling_x ? 6 + offset_x : 9 + offset_x * 2;
         const int ty = subsampling_y ? 6 + offset_y : 9 + offset_y * 2;
         origins[b] = ty * tmpl.width + tx;

@@ -12,10 +12,10 @@ namespace filmgrain::av1 {
 // Width of the noise stripe of a plane: every block plus its overlap columns.
 int noise_stripe_width(int luma_width, int subsampling_x);
 
-// Where each block of stripe `stripe` reads the template (7.18.3.5 offsetX/offsetY): the
-// index in tmpl.samples of the block's first sample, for the num_blocks_across(luma_width)
-// blocks.
-void stripe_block_origins(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width, int subsampling_x,
+// Where each of a stripe's `blocks` blocks reads the template (7.18.3.5 offsetX/offsetY)
+// from its random byte in `offsets` (stripe_block_offsets, shared by the planes): the index
+// in tmpl.samples of the block's first sample.
+void stripe_block_origins(const GrainTemplate& tmpl, const uint8_t* offsets, int blocks, int subsampling_x,
                           int subsampling_y, int32_t* origins);
 
 // The first two noise samples of each of `count` blocks in one row after the horizontal

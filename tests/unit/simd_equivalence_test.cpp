@@ -378,7 +378,8 @@ TEST_P(SimdEquivalence, Av1NoiseStripeRows) {
         // from precomputed seams.
         const av1::GrainTemplate tmpl = sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma;
         std::vector<int32_t> origins(std::size_t(blocks), 0);
-        av1::stripe_block_origins(tmpl, p.grain_seed, stripe, luma_width, sx, sy, origins.data());
+        av1::stripe_block_origins(tmpl, av1::stripe_block_offsets(p.grain_seed, stripe, blocks).data(), blocks, sx, sy,
+                                  origins.data());
         const int bw = 32 >> sx, width = blocks * bw;
         const int gmax = (128 << (bd - 8)) - 1;
         std::vector<const int16_t*> block_rows(static_cast<std::size_t>(blocks));
@@ -417,6 +418,52 @@ TEST_P(SimdEquivalence, Av1NoiseStripeRows) {
             want[std::size_t(x)] = int16_t(std::clamp((old_row[std::size_t(x)] * wo + cur[std::size_t(x)] * wn + 16) >> 5, gmin, gmax));
         av1::simd::cross_fade_row(old_row.data(), cur.data(), width, wo, wn, gmin, gmax);
         ASSERT_EQ(cur, want);
+    }
+}
+
+// The rows a stripe shares with the one above, assembled and cross-faded in one pass (up to
+// 10 bits), against the reference's whole stripe with the vertical overlap.
+TEST_P(SimdEquivalence, Av1CrossFadedStripeRows) {
+    for (int iter = 0; iter < 60; iter++) {
+        const int bd = uniform(0, 1) ? 10 : 8;
+        const int sx = uniform(0, 1), sy = uniform(0, 1);
+        Av1FilmGrainParams p = random_av1_params(rng, bd, false);
+        const av1::GrainTemplate luma = av1::generate_luma_template(p, bd);
+        const av1::GrainTemplate tmpl = sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma;
+        const int luma_width = uniform(1, 200), stripe = uniform(1, 40);
+        const int pw = (luma_width + sx) >> sx, ph = ((stripe + 1) * 32 + sy) >> sy;
+        const av1::StripeNoise want =
+            av1::build_stripe_noise(tmpl, p.grain_seed, stripe, luma_width, pw, ph, sx, sy, true, bd);
+        const int blocks = av1::num_blocks_across(luma_width);
+        const int bw = 32 >> sx, gmax = (128 << (bd - 8)) - 1;
+        std::vector<int32_t> above_origins(std::size_t(blocks), 0), own_origins(above_origins.size(), 0);
+        av1::stripe_block_origins(tmpl, av1::stripe_block_offsets(p.grain_seed, stripe - 1, blocks).data(), blocks, sx,
+                                  sy, above_origins.data());
+        av1::stripe_block_origins(tmpl, av1::stripe_block_offsets(p.grain_seed, stripe, blocks).data(), blocks, sx,
+                                  sy, own_origins.data());
+        std::vector<const int16_t*> above_rows(static_cast<std::size_t>(blocks)), own_rows(above_rows.size());
+        for (int i = 0; i < (2 >> sy); i++) {
+            auto row_of = [&](const std::vector<int32_t>& origins, int y, std::vector<const int16_t*>& pointers) {
+                for (int b = 0; b < blocks; b++)
+                    pointers[std::size_t(b)] = tmpl.samples.data() + std::ptrdiff_t(y) * tmpl.width + origins[std::size_t(b)];
+                av1::simd::BlockNoiseRow row;
+                row.blocks = pointers.data();
+                row.block_width = bw;
+                row.fade = true;
+                row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
+                row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
+                row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
+                return row;
+            };
+            const av1::OverlapWeights w = av1::overlap_weights(i, sy);
+            std::vector<int16_t> got(std::size_t(pw) + 3, int16_t(0x7777));
+            av1::simd::assemble_cross_faded_row(row_of(above_origins, (32 >> sy) + i, above_rows),
+                                                row_of(own_origins, i, own_rows), pw, w.old_weight, w.new_weight,
+                                                got.data());
+            for (int x = 0; x < pw; x++)
+                ASSERT_EQ(got[std::size_t(x)], want.row(i)[x]) << "row " << i << " x " << x << " bd " << bd << " sx " << sx;
+            for (std::size_t x = std::size_t(pw); x < got.size(); x++) ASSERT_EQ(got[x], int16_t(0x7777)) << "wrote past the row";
+        }
     }
 }
 

@@ -66,4 +66,10 @@ void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_wei
 // out[x] = noise.at(x) for x < width.
 void assemble_noise_row(const BlockNoiseRow& noise, int width, int16_t* out);
 
+// assemble_noise_row of both rows, then cross_fade_row (weights and range from new_noise)
+// into out, for bit depths up to 10 with the horizontal overlap faded in the kernel (fade
+// set, no seams) or absent.
+void assemble_cross_faded_row(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width,
+                              int old_weight, int new_weight, int16_t* out);
+
 }  // namespace filmgrain::av1::simd

@@ -682,6 +682,12 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
 // cross-faded before use), block by block as AddBlockNoise reads it.
+// Lanes [j, j + Lanes) of block b's row, its first vector with the horizontal overlap.
+HWY_INLINE hn::Vec<D16> BlockNoiseAt(D16 d16, const BlockNoiseRow& row, int b, int j, const FadeConstants& fade) {
+    const auto own = hn::LoadU(d16, row.blocks[b] + j);
+    return j == 0 ? FirstNoiseOfBlock(d16, row, b, own, fade) : own;
+}
+
 void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
     const D16 d16;
     const int n = int(hn::Lanes(d16));
@@ -689,13 +695,35 @@ void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
     const FadeConstants fade = FadeConstantsOf(row);
     const int vec_end = n >= 2 ? width / n * n : 0;
     const int bw = row.block_width;
-    for (int x = 0, b = 0; x < vec_end; x += bw, ++b) {
-        const int16_t* own = row.blocks[b];
-        const int in_block = std::min(bw, vec_end - x);
-        hn::StoreU(FirstNoiseOfBlock(d16, row, b, hn::LoadU(d16, own), fade), d16, out + x);
-        for (int j = n; j < in_block; j += n) hn::StoreU(hn::LoadU(d16, own + j), d16, out + x + j);
-    }
+    for (int x = 0, b = 0; x < vec_end; x += bw, ++b)
+        for (int j = 0; j < std::min(bw, vec_end - x); j += n)
+            hn::StoreU(BlockNoiseAt(d16, row, b, j, fade), d16, out + x + j);
     for (int x = vec_end; x < width; ++x) out[x] = row.at(x);
+}
+
+// The vertical overlap fused with the assembly of both rows: no row is written twice. Up to
+// 10 bits the weighted sum fits 16-bit lanes (|noise| <= 512, weights summing to at most 45)
+// and Round2(sum, 5) is a rounding high multiply by 1 << 10, as in FirstNoiseOfBlock.
+void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width, int old_weight,
+                           int new_weight, int16_t* out) {
+    const D16 d16;
+    const int n = int(hn::Lanes(d16));
+    const BlockNoiseRow above = old_noise, own = new_noise;  // local: the stores cannot alias them
+    const FadeConstants fade_above = FadeConstantsOf(above), fade_own = FadeConstantsOf(own);
+    const auto w_old = hn::Set(d16, int16_t(old_weight)), w_new = hn::Set(d16, int16_t(new_weight));
+    const auto gmin = hn::Set(d16, own.gmin), gmax = hn::Set(d16, own.gmax), round = hn::Set(d16, int16_t(1 << 10));
+    const int vec_end = n >= 2 ? width / n * n : 0;
+    const int bw = own.block_width;
+    for (int x = 0, b = 0; x < vec_end; x += bw, ++b)
+        for (int j = 0; j < std::min(bw, vec_end - x); j += n) {
+            const auto sum = hn::Add(hn::Mul(BlockNoiseAt(d16, above, b, j, fade_above), w_old),
+                                     hn::Mul(BlockNoiseAt(d16, own, b, j, fade_own), w_new));
+            hn::StoreU(hn::Min(hn::Max(hn::MulFixedPoint15(sum, round), gmin), gmax), d16, out + x + j);
+        }
+    for (int x = vec_end; x < width; ++x) {
+        const int v = (above.at(x) * old_weight + own.at(x) * new_weight + 16) >> 5;
+        out[x] = int16_t(v < own.gmin ? own.gmin : v > own.gmax ? own.gmax : v);
+    }
 }
 
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
@@ -731,6 +759,7 @@ HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
 HWY_EXPORT(AssembleNoiseRow);
+HWY_EXPORT(AssembleCrossFadedRow);
 
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
@@ -759,6 +788,10 @@ void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_wei
 }
 void assemble_noise_row(const BlockNoiseRow& noise, int width, int16_t* out) {
     HWY_DYNAMIC_DISPATCH(AssembleNoiseRow)(noise, width, out);
+}
+void assemble_cross_faded_row(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width,
+                              int old_weight, int new_weight, int16_t* out) {
+    HWY_DYNAMIC_DISPATCH(AssembleCrossFadedRow)(old_noise, new_noise, width, old_weight, new_weight, out);
 }
 
 }  // namespace filmgrain::av1::simd
