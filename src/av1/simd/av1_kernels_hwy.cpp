@@ -308,11 +308,12 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // chain uses them (copying them to whole vectors once per row cost 1-2 % of a frame).
 // Three 16-entry table rows broadcast to every 16-byte block: the entry at each byte's low
 // nibble `low` in the row `rel` names (0 the one below, 1 the same, 2 the one above).
+// `one` and `two` are the constants 1 and 2, passed in so that a loop makes them once.
 template <class D8>
-HWY_INLINE hn::Vec<D8> FromThreeRows(D8 du8, hn::Vec<D8> below, hn::Vec<D8> same, hn::Vec<D8> above,
-                                     hn::Vec<D8> low, hn::Vec<D8> rel) {
-    return hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(2))), hn::TableLookupBytes(above, low),
-                          hn::IfThenElse(hn::Eq(rel, hn::Set(du8, uint8_t(1))), hn::TableLookupBytes(same, low),
+HWY_INLINE hn::Vec<D8> FromThreeRows(hn::Vec<D8> below, hn::Vec<D8> same, hn::Vec<D8> above, hn::Vec<D8> low,
+                                     hn::Vec<D8> rel, hn::Vec<D8> one, hn::Vec<D8> two) {
+    return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
+                          hn::IfThenElse(hn::Eq(rel, one), hn::TableLookupBytes(same, low),
                                          hn::TableLookupBytes(below, low)));
 }
 
@@ -340,9 +341,10 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
         const auto low = hn::And(index, hn::Set(du8, uint8_t(15)));
         for (int t = 0; t < kTables; ++t) {
             const uint8_t* lut = tables[t]->lut;
-            out[t] = FromThreeRows(du8, hn::LoadDup128(du8, lut + 16 * std::max(h0 - 1, 0)),
-                                   hn::LoadDup128(du8, lut + 16 * h0),
-                                   hn::LoadDup128(du8, lut + 16 * std::min(h0 + 1, 15)), low, rel);
+            out[t] = FromThreeRows<D8>(hn::LoadDup128(du8, lut + 16 * (h0 > 0 ? h0 - 1 : 0)),
+                                       hn::LoadDup128(du8, lut + 16 * h0),
+                                       hn::LoadDup128(du8, lut + 16 * (h0 < 15 ? h0 + 1 : 15)), low, rel,
+                                       hn::Set(du8, uint8_t(1)), two);
         }
         return;
     }
@@ -375,17 +377,17 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
         const ShuffleRows<D8>* const tables[1] = {&rows};
         // Two vectors share one three-row test (against the first one's first lane) and
         // its row loads; where that fails each vector takes LookUpVector's own test.
-        const auto two = hn::Set(du8, uint8_t(2)), nibble = hn::Set(du8, uint8_t(15));
+        const auto one = hn::Set(du8, uint8_t(1)), two = hn::Set(du8, uint8_t(2)), nibble = hn::Set(du8, uint8_t(15));
         for (; k + 2 * n <= count; k += 2 * n) {
             const auto a = hn::LoadU(du8, index + k), b = hn::LoadU(du8, index + k + n);
             const int h0 = index[k] >> 4;
             const auto first = hn::Set(du8, uint8_t(h0 - 1));  // wraps below 0
             const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
-            const auto below = hn::LoadDup128(du8, rows.lut + 16 * std::max(h0 - 1, 0));
+            const auto below = hn::LoadDup128(du8, rows.lut + 16 * (h0 > 0 ? h0 - 1 : 0));
             const auto same = hn::LoadDup128(du8, rows.lut + 16 * h0);
-            const auto above = hn::LoadDup128(du8, rows.lut + 16 * std::min(h0 + 1, 15));
+            const auto above = hn::LoadDup128(du8, rows.lut + 16 * (h0 < 15 ? h0 + 1 : 15));
             auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) {
-                return FromThreeRows(du8, below, same, above, hn::And(idx, nibble), rel);
+                return FromThreeRows<D8>(below, same, above, hn::And(idx, nibble), rel, one, two);
             };
             if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
                 hn::StoreU(pick(a, rel_a), du8, out + k);
@@ -448,7 +450,8 @@ public:
         const D16 d16;
         const hn::RebindToUnsigned<D16> du16;
         const int n = int(hn::Lanes(d16));
-        const auto two = hn::Set(du16, uint16_t(2));
+        const Consts c = MakeConsts();
+        const auto two = c.two;
         if (!by_rows_) return LookUpChunk(in, 0, count);
         int misses = 0;
         // Two pairs share one row test (against the first sample of the first) and its row
@@ -464,14 +467,14 @@ public:
             const auto top = hn::Max(hn::Max(rel[0], rel[1]), hn::Max(rel[2], rel[3]));
             if (row <= last_row_ && hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(top, two), hn::Zero(du16)))) {
                 const RowsAround rows = RowsAt(row);
-                StoreByRows(rows, v[0], v[1], rel[0], rel[1], k);
-                StoreByRows(rows, v[2], v[3], rel[2], rel[3], k + 2 * n);
+                StoreByRows(c, rows, v[0], v[1], rel[0], rel[1], k);
+                StoreByRows(c, rows, v[2], v[3], rel[2], rel[3], k + 2 * n);
                 continue;
             }
-            misses += !LookUpPair(in, k);
-            misses += !LookUpPair(in, k + 2 * n);
+            misses += !LookUpPair(c, in, k);
+            misses += !LookUpPair(c, in, k + 2 * n);
         }
-        for (; k + 2 * n <= count; k += 2 * n) misses += !LookUpPair(in, k);
+        for (; k + 2 * n <= count; k += 2 * n) misses += !LookUpPair(c, in, k);
         // Noisy content: where more than half the pairs of a chunk missed the row test, the
         // rest of the row skips it.
         by_rows_ = 2 * misses * 2 * n <= k;
@@ -486,36 +489,50 @@ public:
     };
     HWY_INLINE RowsAround RowsAt(int row) const {
         const hn::Repartition<uint8_t, D16> du8;
-        return {hn::LoadDup128(du8, full_ + 16 * std::max(row - 1, 0)), hn::LoadDup128(du8, full_ + 16 * row),
-                hn::LoadDup128(du8, full_ + 16 * std::min(row + 1, last_row_))};
+        return {hn::LoadDup128(du8, full_ + 16 * (row > 0 ? row - 1 : 0)), hn::LoadDup128(du8, full_ + 16 * row),
+                hn::LoadDup128(du8, full_ + 16 * (row < last_row_ ? row + 1 : last_row_))};
     }
     // The q15 scales of the pair (a, b) into scale_[k, k + 2 * Lanes), every sample of it
     // within `rows` (rel_a, rel_b: its row numbers relative to rows.below, 0..2). The two
     // vectors' low nibbles share one byte vector (even and odd bytes), so nothing crosses
     // lanes.
-    HWY_INLINE void StoreByRows(const RowsAround& rows, hn::Vec<hn::RebindToUnsigned<D16>> a,
+    // The row form's constants, made once per LookUp call and passed down: made inside the
+    // pair functions, the compiler re-made them at every use under the register pressure of
+    // the inlined loop (the q15 shift is a multiply by pow2 for the same reason: a shift by
+    // a run-time count reloaded the count each time).
+    struct Consts {
+        hn::Vec<hn::RebindToUnsigned<D16>> nibble, low_byte, two;
+        hn::Vec<D16> pow2;  // 1 << up_shift_
+        hn::Vec<hn::Repartition<uint8_t, D16>> one8, two8;
+    };
+    HWY_INLINE Consts MakeConsts() const {
+        const hn::RebindToUnsigned<D16> du16;
+        const hn::Repartition<uint8_t, D16> du8;
+        return {hn::Set(du16, uint16_t(15)), hn::Set(du16, uint16_t(0x00FF)), hn::Set(du16, uint16_t(2)),
+                hn::Set(D16(), int16_t(1 << up_shift_)), hn::Set(du8, uint8_t(1)), hn::Set(du8, uint8_t(2))};
+    }
+    HWY_INLINE void StoreByRows(const Consts& c, const RowsAround& rows, hn::Vec<hn::RebindToUnsigned<D16>> a,
                                 hn::Vec<hn::RebindToUnsigned<D16>> b, hn::Vec<hn::RebindToUnsigned<D16>> rel_a,
                                 hn::Vec<hn::RebindToUnsigned<D16>> rel_b, int k) {
         const D16 d16;
         const hn::RebindToUnsigned<D16> du16;
         const hn::Repartition<uint8_t, D16> du8;
         const int n = int(hn::Lanes(d16));
-        const auto nibble = hn::Set(du16, uint16_t(15)), low_byte = hn::Set(du16, uint16_t(0x00FF));
-        const auto low = hn::BitCast(du8, hn::Or(hn::And(a, nibble), hn::ShiftLeft<8>(hn::And(b, nibble))));
+        const auto low = hn::BitCast(du8, hn::Or(hn::And(a, c.nibble), hn::ShiftLeft<8>(hn::And(b, c.nibble))));
         const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
-        const auto got = hn::BitCast(du16, FromThreeRows(du8, rows.below, rows.same, rows.above, low, rel));
-        hn::Store(hn::ShiftLeftSame(hn::BitCast(d16, hn::And(got, low_byte)), up_shift_), d16, scale_ + k);
-        hn::Store(hn::ShiftLeftSame(hn::BitCast(d16, hn::ShiftRight<8>(got)), up_shift_), d16, scale_ + k + n);
+        const auto got =
+            hn::BitCast(du16, FromThreeRows<decltype(du8)>(rows.below, rows.same, rows.above, low, rel, c.one8, c.two8));
+        hn::Store(hn::Mul(hn::BitCast(d16, hn::And(got, c.low_byte)), c.pow2), d16, scale_ + k);
+        hn::Store(hn::Mul(hn::BitCast(d16, hn::ShiftRight<8>(got)), c.pow2), d16, scale_ + k + n);
     }
     // One pair at in[k, k + 2 * Lanes) into scale_: by its own row test (true) or from the
     // two LUT entries and the interpolation (false).
-    HWY_INLINE bool LookUpPair(const uint16_t* in, int k) {
+    HWY_INLINE bool LookUpPair(const Consts& c, const uint16_t* in, int k) {
         const D16 d16;
         const hn::RebindToUnsigned<D16> du16;
         const hn::Repartition<uint8_t, D16> du8;
         const int n = int(hn::Lanes(d16));
-        const auto two = hn::Set(du16, uint16_t(2));
-        const auto low_byte = hn::Set(du16, uint16_t(0x00FF)), high_byte = hn::Set(du16, uint16_t(0xFF00));
+        const auto two = c.two, low_byte = c.low_byte, high_byte = hn::Set(du16, uint16_t(0xFF00));
         const auto a = hn::LoadU(du16, in + k), b = hn::LoadU(du16, in + k + n);
         const int row = in[k] >> 4;
         const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
@@ -524,7 +541,7 @@ public:
         // takes the other form, whose byte indices cannot leave the LUT.)
         if (row <= last_row_ &&
             hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
-            StoreByRows(RowsAt(row), a, b, rel_a, rel_b, k);
+            StoreByRows(c, RowsAt(row), a, b, rel_a, rel_b, k);
             return true;
         }
         // The top bytes of indices below 1 << bit_depth fit 8 bits (larger ones wrap).
