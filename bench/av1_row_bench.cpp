@@ -18,6 +18,7 @@
 #include "bench_pictures.hpp"
 #include "av1/grain_template_generation.hpp"
 #include "av1/scaling_lookup.hpp"
+#include "av1/stripe_block_origins.hpp"
 #include "av1/simd/av1_kernels.hpp"
 #include "core/simd_targets.hpp"
 
@@ -63,13 +64,8 @@ void BM_Av1Rows(benchmark::State& state) {
     const int block_w = chroma ? 16 : 32, block_h = block_w;
     const BlockOrigins origins(t, pw, block_w, block_h, 7);
     std::vector<const int16_t*> rows(std::size_t(origins.blocks));
-    av1::simd::BlockNoiseRow row;
+    av1::simd::BlockNoiseRow row = av1::kernel_faded_row(chroma ? 1 : 0, bd);
     row.blocks = rows.data();
-    row.block_width = block_w;
-    row.fade = true;
-    row.fade_old[0] = int16_t(chroma ? 23 : 27), row.fade_old[1] = int16_t(chroma ? 0 : 17);
-    row.fade_new[0] = int16_t(chroma ? 22 : 17), row.fade_new[1] = int16_t(chroma ? 32 : 27);
-    row.gmin = int16_t(-(128 << (bd - 8))), row.gmax = int16_t((128 << (bd - 8)) - 1);
     av1::ChromaScalingIndex index;
     index.mult = p.cb_mult - 128, index.luma_mult = p.cb_luma_mult - 128, index.offset = p.cb_offset - 256;
     const int shift = p.grain_scaling_minus_8 + 8, max_value = (1 << bd) - 1;

@@ -176,16 +176,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const int block_w = kBlockSize >> sx;
         const int pw = plane_width(format_, pl, width_);
         const int shared_rows = overlap && stripe > 0 ? std::min(rows, 2 >> sy) : 0;
-        simd::BlockNoiseRow row;
-        row.block_width = block_w;
         // The horizontal overlap is faded inside the kernels where 16-bit lanes hold it, else
         // precomputed per row (12 bits).
         const bool fade_in_kernel = overlap && bit_depth_ <= 10;
-        for (int k = 0; k < 2; ++k) {
-            const OverlapWeights w = overlap_weights(k, sx);
-            row.fade_old[k] = int16_t(w.old_weight), row.fade_new[k] = int16_t(w.new_weight);
-        }
-        row.gmin = int16_t(range.min), row.gmax = int16_t(range.max);
+        simd::BlockNoiseRow row = kernel_faded_row(sx, bit_depth_);
+        row.fade = false;
         // Row `i` of the blocks at `origins`, as it reads the template, through `pointers`.
         auto template_row = [&](const int32_t* origins, int i, const int16_t** pointers) {
             simd::BlockNoiseRow r = row;

@@ -22,6 +22,19 @@ void stripe_block_origins(const GrainTemplate& tmpl, const uint8_t* offsets, int
     }
 }
 
+simd::BlockNoiseRow kernel_faded_row(int subsampling_x, int bit_depth) {
+    simd::BlockNoiseRow row;
+    row.block_width = kBlockSize >> subsampling_x;
+    row.fade = true;
+    for (int k = 0; k < 2; ++k) {
+        const OverlapWeights w = overlap_weights(k, subsampling_x);
+        row.fade_old[k] = int16_t(w.old_weight), row.fade_new[k] = int16_t(w.new_weight);
+    }
+    const GrainRange range = grain_range(bit_depth);
+    row.gmin = int16_t(range.min), row.gmax = int16_t(range.max);
+    return row;
+}
+
 void overlap_seams(const int16_t* const* block_rows, int count, int subsampling_x, int bit_depth, uint32_t* seams) {
     const int block_w = kBlockSize >> subsampling_x;
     const GrainRange range = grain_range(bit_depth);

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "av1/grain_template_generation.hpp"
+#include "av1/simd/av1_kernels.hpp"
 
 namespace filmgrain::av1 {
 
@@ -17,6 +18,12 @@ int noise_stripe_width(int luma_width, int subsampling_x);
 // in tmpl.samples of the block's first sample.
 void stripe_block_origins(const GrainTemplate& tmpl, const uint8_t* offsets, int blocks, int subsampling_x,
                           int subsampling_y, int32_t* origins);
+
+// The constants of a plane's noise rows for the kernels: the block width, the weights of
+// the horizontal overlap of a block's first two columns (7.18.3.5) and the grain range, with
+// the overlap faded in the kernels (fade set; only up to 10 bits, see BlockNoiseRow). The
+// caller points `blocks` at the row.
+simd::BlockNoiseRow kernel_faded_row(int subsampling_x, int bit_depth);
 
 // The first two noise samples of each of `count` blocks in one row after the horizontal
 // overlap with the block on the left (columns block_width and block_width + 1 of that

@@ -381,22 +381,16 @@ TEST_P(SimdEquivalence, Av1NoiseStripeRows) {
         av1::stripe_block_origins(tmpl, av1::stripe_block_offsets(p.grain_seed, stripe, blocks).data(), blocks, sx, sy,
                                   origins.data());
         const int bw = 32 >> sx, width = blocks * bw;
-        const int gmax = (128 << (bd - 8)) - 1;
         std::vector<const int16_t*> block_rows(static_cast<std::size_t>(blocks));
         std::vector<uint32_t> seams(static_cast<std::size_t>(blocks));
         std::vector<int16_t> got(static_cast<std::size_t>(width));
         for (int y = 0; y < want.height; y++) {
             for (int b = 0; b < blocks; b++)
                 block_rows[std::size_t(b)] = tmpl.samples.data() + std::ptrdiff_t(y) * tmpl.width + origins[std::size_t(b)];
-            av1::simd::BlockNoiseRow row;
+            av1::simd::BlockNoiseRow row = av1::kernel_faded_row(sx, bd);
             row.blocks = block_rows.data();
-            row.block_width = bw;
-            if (overlap && bd <= 10 && uniform(0, 1)) {
-                row.fade = true;
-                row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
-                row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
-                row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
-            } else if (overlap) {
+            row.fade = overlap && bd <= 10 && uniform(0, 1);
+            if (overlap && !row.fade) {
                 av1::overlap_seams(block_rows.data(), blocks, sx, bd, seams.data());
                 row.seams = seams.data();
             }
@@ -435,7 +429,6 @@ TEST_P(SimdEquivalence, Av1CrossFadedStripeRows) {
         const av1::StripeNoise want =
             av1::build_stripe_noise(tmpl, p.grain_seed, stripe, luma_width, pw, ph, sx, sy, true, bd);
         const int blocks = av1::num_blocks_across(luma_width);
-        const int bw = 32 >> sx, gmax = (128 << (bd - 8)) - 1;
         std::vector<int32_t> above_origins(std::size_t(blocks), 0), own_origins(above_origins.size(), 0);
         av1::stripe_block_origins(tmpl, av1::stripe_block_offsets(p.grain_seed, stripe - 1, blocks).data(), blocks, sx,
                                   sy, above_origins.data());
@@ -446,13 +439,8 @@ TEST_P(SimdEquivalence, Av1CrossFadedStripeRows) {
             auto row_of = [&](const std::vector<int32_t>& origins, int y, std::vector<const int16_t*>& pointers) {
                 for (int b = 0; b < blocks; b++)
                     pointers[std::size_t(b)] = tmpl.samples.data() + std::ptrdiff_t(y) * tmpl.width + origins[std::size_t(b)];
-                av1::simd::BlockNoiseRow row;
+                av1::simd::BlockNoiseRow row = av1::kernel_faded_row(sx, bd);
                 row.blocks = pointers.data();
-                row.block_width = bw;
-                row.fade = true;
-                row.fade_old[0] = int16_t(sx ? 23 : 27), row.fade_old[1] = int16_t(sx ? 0 : 17);
-                row.fade_new[0] = int16_t(sx ? 22 : 17), row.fade_new[1] = int16_t(sx ? 32 : 27);
-                row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
                 return row;
             };
             const av1::OverlapWeights w = av1::overlap_weights(i, sy);
