@@ -88,14 +88,12 @@ void StripeScratch::reserve(int luma_width) {
     if (block_rows.size() < blocks) block_rows.resize(blocks);
     if (previous_block_rows.size() < blocks) previous_block_rows.resize(blocks);
     if (seams.size() < blocks) seams.resize(blocks);
-    for (DrawnOffsets& d : drawn_)
-        if (d.bytes.size() < blocks) d.bytes.resize(blocks);
 }
 
 const uint8_t* StripeScratch::block_offsets(int grain_seed, int stripe, int blocks) {
     DrawnOffsets& d = drawn_[stripe & 1];
     if (d.grain_seed != grain_seed || d.stripe != stripe || d.blocks != blocks) {
-        if (d.bytes.size() < std::size_t(blocks)) d.bytes.resize(std::size_t(blocks));
+        if (d.bytes.size() < std::size_t(blocks)) d.bytes.resize(std::size_t(blocks));  // once per width
         fill_stripe_block_offsets(grain_seed, stripe, blocks, d.bytes.data());
         d.grain_seed = grain_seed, d.stripe = stripe, d.blocks = blocks;
     }
