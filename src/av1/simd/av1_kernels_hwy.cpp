@@ -54,6 +54,13 @@ HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int
     return hn::Min(hn::Max(hn::MulFixedPoint15(sum, hn::Set(d16, int16_t(1 << 10))), c.gmin), c.gmax);
 }
 
+// Lanes [j, j + Lanes) of block b's row, its first vector (j = 0) with the horizontal
+// overlap. At least two lanes where the row overlaps.
+HWY_INLINE hn::Vec<D16> BlockNoiseAt(D16 d16, const BlockNoiseRow& row, int b, int j, const FadeConstants& fade) {
+    const auto own = hn::LoadU(d16, row.blocks[b] + j);
+    return j == 0 ? FirstNoiseOfBlock(d16, row, b, own, fade) : own;
+}
+
 // dst = clip(src + Round2(scale * noise, shift)) for `count` samples from x (x a multiple
 // of the block width, count of the lane count), the scales read by `scale_at(k)` as
 // pre-shifted q15 int16 lanes. Block by block, so that only a block's first vector looks
@@ -98,27 +105,23 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
                 const auto orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
                 return hn::Add(orig, hn::MulFixedPoint15(scale_at(k), noise));
             };
-            auto first_of = [&](int b) {
-                const auto own = hn::LoadU(d16, row.blocks[b]);
-                return overlapped ? FirstNoiseOfBlock(d16, row, b, own, fade) : own;
-            };
             int k = 0, b = x / bw;
             for (; k + 2 * n <= count; k += 2 * n) {
                 hn::Vec<D16> s0, s1;
                 if (bw == 2 * n) {
-                    s0 = sum(k, first_of(b));
-                    s1 = sum(k + n, hn::LoadU(d16, row.blocks[b] + n));
+                    s0 = sum(k, BlockNoiseAt(d16, row, b, 0, fade));
+                    s1 = sum(k + n, BlockNoiseAt(d16, row, b, n, fade));
                     b += 1;
                 } else {
-                    s0 = sum(k, first_of(b));
-                    s1 = sum(k + n, first_of(b + 1));
+                    s0 = sum(k, BlockNoiseAt(d16, row, b, 0, fade));
+                    s1 = sum(k + n, BlockNoiseAt(d16, row, b + 1, 0, fade));
                     b += 2;
                 }
                 __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi16(s0.raw, s1.raw), 0xD8);
                 packed = _mm256_min_epu8(_mm256_max_epu8(packed, min8), max8);
                 _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + x + k), packed);
             }
-            if (k < count) blend(k, first_of(b));  // one vector left: a block's first
+            if (k < count) blend(k, BlockNoiseAt(d16, row, b, 0, fade));  // one vector left: a block's first
             return;
         }
     }
@@ -127,13 +130,12 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
         const int16_t* own = row.blocks[b];
         const int in_block = std::min(bw, count - k);
         int j = 0;
-        if (overlapped) {
-            if (n >= 2) {
-                blend(k, FirstNoiseOfBlock(d16, row, b, hn::LoadU(d16, own), fade));
-                j = n;
-            } else {
-                for (; j < 2 && j < in_block; ++j) blend(k + j, hn::Set(d16, row.at(x + k + j)));
-            }
+        if (overlapped && n < 2) {
+            // One lane (the scalar target): the two overlapped samples one by one.
+            for (; j < 2 && j < in_block; ++j) blend(k + j, hn::Set(d16, row.at(x + k + j)));
+        } else {
+            blend(k, BlockNoiseAt(d16, row, b, 0, fade));
+            j = n;
         }
         for (; j < in_block; j += n) blend(k + j, hn::LoadU(d16, own + j));
     }
@@ -306,16 +308,26 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // constants replace a scalar load and store per sample. The XOR'd rows are made once per
 // parameter set (ScalingLookup::lut8_chain()) and read by 16-byte broadcast loads where the
 // chain uses them (copying them to whole vectors once per row cost 1-2 % of a frame).
-// Three 16-entry table rows broadcast to every 16-byte block: the entry at each byte's low
-// nibble `low` in the row `rel` names (0 the one below, 1 the same, 2 the one above).
-// `one` and `two` are the constants 1 and 2, passed in so that a loop makes them once.
+// Rows row - 1, row and row + 1 of a table of 16-entry rows (clamped to 0..last_row), each
+// broadcast to every 16-byte block: the three rows a vector whose samples lie near one
+// another is looked up in (the 8-bit LUT, or above 8 bits the full-range table).
 template <class D8>
-HWY_INLINE hn::Vec<D8> FromThreeRows(hn::Vec<D8> below, hn::Vec<D8> same, hn::Vec<D8> above, hn::Vec<D8> low,
-                                     hn::Vec<D8> rel, hn::Vec<D8> one, hn::Vec<D8> two) {
-    return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
-                          hn::IfThenElse(hn::Eq(rel, one), hn::TableLookupBytes(same, low),
-                                         hn::TableLookupBytes(below, low)));
-}
+struct ThreeRows {
+    hn::Vec<D8> below, same, above;
+    static HWY_INLINE ThreeRows At(const uint8_t* table, int row, int last_row) {
+        const D8 du8;
+        return {hn::LoadDup128(du8, table + 16 * (row > 0 ? row - 1 : 0)), hn::LoadDup128(du8, table + 16 * row),
+                hn::LoadDup128(du8, table + 16 * (row < last_row ? row + 1 : last_row))};
+    }
+    // The entry at each byte's low nibble `low` in the row `rel` names (0 below, 1 the same,
+    // 2 above). `one` and `two` are the constants 1 and 2, passed in so that a loop makes
+    // them once.
+    HWY_INLINE hn::Vec<D8> Pick(hn::Vec<D8> low, hn::Vec<D8> rel, hn::Vec<D8> one, hn::Vec<D8> two) const {
+        return hn::IfThenElse(hn::Eq(rel, two), hn::TableLookupBytes(above, low),
+                              hn::IfThenElse(hn::Eq(rel, one), hn::TableLookupBytes(same, low),
+                                             hn::TableLookupBytes(below, low)));
+    }
+};
 
 template <class D8>
 struct ShuffleRows {
@@ -340,11 +352,7 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
     if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel, two), hn::Zero(du8)))) {
         const auto low = hn::And(index, hn::Set(du8, uint8_t(15)));
         for (int t = 0; t < kTables; ++t) {
-            const uint8_t* lut = tables[t]->lut;
-            out[t] = FromThreeRows<D8>(hn::LoadDup128(du8, lut + 16 * (h0 > 0 ? h0 - 1 : 0)),
-                                       hn::LoadDup128(du8, lut + 16 * h0),
-                                       hn::LoadDup128(du8, lut + 16 * (h0 < 15 ? h0 + 1 : 15)), low, rel,
-                                       hn::Set(du8, uint8_t(1)), two);
+            out[t] = ThreeRows<D8>::At(tables[t]->lut, h0, 15).Pick(low, rel, hn::Set(du8, uint8_t(1)), two);
         }
         return;
     }
@@ -383,12 +391,8 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
             const int h0 = index[k] >> 4;
             const auto first = hn::Set(du8, uint8_t(h0 - 1));  // wraps below 0
             const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
-            const auto below = hn::LoadDup128(du8, rows.lut + 16 * (h0 > 0 ? h0 - 1 : 0));
-            const auto same = hn::LoadDup128(du8, rows.lut + 16 * h0);
-            const auto above = hn::LoadDup128(du8, rows.lut + 16 * (h0 < 15 ? h0 + 1 : 15));
-            auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) {
-                return FromThreeRows<D8>(below, same, above, hn::And(idx, nibble), rel, one, two);
-            };
+            const ThreeRows<D8> near = ThreeRows<D8>::At(rows.lut, h0, 15);
+            auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) { return near.Pick(hn::And(idx, nibble), rel, one, two); };
             if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
                 hn::StoreU(pick(a, rel_a), du8, out + k);
                 hn::StoreU(pick(b, rel_b), du8, out + k + n);
@@ -466,7 +470,7 @@ public:
             }
             const auto top = hn::Max(hn::Max(rel[0], rel[1]), hn::Max(rel[2], rel[3]));
             if (row <= last_row_ && hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(top, two), hn::Zero(du16)))) {
-                const RowsAround rows = RowsAt(row);
+                const auto rows = ThreeRows<D8x>::At(full_, row, last_row_);
                 StoreByRows(c, rows, v[0], v[1], rel[0], rel[1], k);
                 StoreByRows(c, rows, v[2], v[3], rel[2], rel[3], k + 2 * n);
                 continue;
@@ -482,20 +486,6 @@ public:
         for (; k < count; ++k) scale_[k] = int16_t(Scalar(in[k]) << up_shift_);
     }
 #if HWY_TARGET != HWY_SCALAR
-    // The rows of the full table around `row` (row - 1, row, row + 1, within the table),
-    // each broadcast to every 16-byte block.
-    struct RowsAround {
-        hn::Vec<hn::Repartition<uint8_t, D16>> below, same, above;
-    };
-    HWY_INLINE RowsAround RowsAt(int row) const {
-        const hn::Repartition<uint8_t, D16> du8;
-        return {hn::LoadDup128(du8, full_ + 16 * (row > 0 ? row - 1 : 0)), hn::LoadDup128(du8, full_ + 16 * row),
-                hn::LoadDup128(du8, full_ + 16 * (row < last_row_ ? row + 1 : last_row_))};
-    }
-    // The q15 scales of the pair (a, b) into scale_[k, k + 2 * Lanes), every sample of it
-    // within `rows` (rel_a, rel_b: its row numbers relative to rows.below, 0..2). The two
-    // vectors' low nibbles share one byte vector (even and odd bytes), so nothing crosses
-    // lanes.
     // The row form's constants, made once per LookUp call and passed down: made inside the
     // pair functions, the compiler re-made them at every use under the register pressure of
     // the inlined loop (the q15 shift is a multiply by pow2 for the same reason: a shift by
@@ -511,7 +501,11 @@ public:
         return {hn::Set(du16, uint16_t(15)), hn::Set(du16, uint16_t(0x00FF)), hn::Set(du16, uint16_t(2)),
                 hn::Set(D16(), int16_t(1 << up_shift_)), hn::Set(du8, uint8_t(1)), hn::Set(du8, uint8_t(2))};
     }
-    HWY_INLINE void StoreByRows(const Consts& c, const RowsAround& rows, hn::Vec<hn::RebindToUnsigned<D16>> a,
+    // The q15 scales of the pair (a, b) into scale_[k, k + 2 * Lanes), every sample of it
+    // within `rows` of the full table (rel_a, rel_b: its row numbers relative to
+    // rows.below, 0..2). The two vectors' low nibbles share one byte vector (even and odd
+    // bytes), so nothing crosses lanes.
+    HWY_INLINE void StoreByRows(const Consts& c, const ThreeRows<hn::Repartition<uint8_t, D16>>& rows, hn::Vec<hn::RebindToUnsigned<D16>> a,
                                 hn::Vec<hn::RebindToUnsigned<D16>> b, hn::Vec<hn::RebindToUnsigned<D16>> rel_a,
                                 hn::Vec<hn::RebindToUnsigned<D16>> rel_b, int k) {
         const D16 d16;
@@ -520,8 +514,7 @@ public:
         const int n = int(hn::Lanes(d16));
         const auto low = hn::BitCast(du8, hn::Or(hn::And(a, c.nibble), hn::ShiftLeft<8>(hn::And(b, c.nibble))));
         const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
-        const auto got =
-            hn::BitCast(du16, FromThreeRows<decltype(du8)>(rows.below, rows.same, rows.above, low, rel, c.one8, c.two8));
+        const auto got = hn::BitCast(du16, rows.Pick(low, rel, c.one8, c.two8));
         hn::Store(hn::Mul(hn::BitCast(d16, hn::And(got, c.low_byte)), c.pow2), d16, scale_ + k);
         hn::Store(hn::Mul(hn::BitCast(d16, hn::ShiftRight<8>(got)), c.pow2), d16, scale_ + k + n);
     }
@@ -541,7 +534,7 @@ public:
         // takes the other form, whose byte indices cannot leave the LUT.)
         if (row <= last_row_ &&
             hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
-            StoreByRows(c, RowsAt(row), a, b, rel_a, rel_b, k);
+            StoreByRows(c, ThreeRows<D8x>::At(full_, row, last_row_), a, b, rel_a, rel_b, k);
             return true;
         }
         // The top bytes of indices below 1 << bit_depth fit 8 bits (larger ones wrap).
@@ -699,12 +692,6 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
 // cross-faded before use), block by block as AddBlockNoise reads it.
-// Lanes [j, j + Lanes) of block b's row, its first vector with the horizontal overlap.
-HWY_INLINE hn::Vec<D16> BlockNoiseAt(D16 d16, const BlockNoiseRow& row, int b, int j, const FadeConstants& fade) {
-    const auto own = hn::LoadU(d16, row.blocks[b] + j);
-    return j == 0 ? FirstNoiseOfBlock(d16, row, b, own, fade) : own;
-}
-
 void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
     const D16 d16;
     const int n = int(hn::Lanes(d16));
