@@ -104,7 +104,7 @@ std::size_t StripeScratch::bytes() const {
     return (noise.capacity() + previous.capacity()) * sizeof(int16_t) +
            (origins.capacity() + previous_origins.capacity()) * sizeof(int32_t) +
            (block_rows.capacity() + previous_block_rows.capacity()) * sizeof(const int16_t*) +
-           seams.capacity() * sizeof(uint32_t) +
+           seams.capacity() * sizeof(uint32_t) + co_sited_luma.capacity() * sizeof(uint16_t) +
            drawn_[0].bytes.capacity() + drawn_[1].bytes.capacity();
 }
 
@@ -231,6 +231,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         }
     };
 
+    bool co_sited_made = false;
     for_each_stripe_plane<Pixel>(src, dst, stripe, [&](int pl, int y0, int rows, int pw, int) {
         const PlaneView& s = src.planes[pl];
         const PlaneView& d = dst.planes[pl];
@@ -248,16 +249,38 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             });
             return;
         }
+        // Subsampled horizontally, both chroma planes scale by the same luma averages: the first
+        // plane with grain makes them for the stripe, and the kernels read them as unsubsampled
+        // luma.
+        if (subx_ && !co_sited_made) {
+            // sized once for a whole stripe's chroma rows at this depth (a shorter last stripe
+            // first must not leave a later frame to grow it)
+            const std::size_t stripe_rows = std::size_t(kBlockSize >> suby_);
+            const std::size_t need = (stripe_rows * std::size_t(pw) * sizeof(Pixel) + 1) / 2;
+            if (scratch.co_sited_luma.size() < need) scratch.co_sited_luma.resize(need);
+            Pixel* out = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());
+            for (int i = 0; i < rows; ++i) {
+                const Pixel* luma = src.planes[0].row<Pixel>((y0 + i) << suby_);
+                if constexpr (sizeof(Pixel) == 1)
+                    simd::co_sited_luma_row_u8(luma, width_, pw, out + std::ptrdiff_t(i) * pw);
+                else
+                    simd::co_sited_luma_row_u16(luma, width_, pw, out + std::ptrdiff_t(i) * pw);
+            }
+            co_sited_made = true;
+        }
+        const Pixel* co_sited = reinterpret_cast<const Pixel*>(scratch.co_sited_luma.data());
         blend_plane(pl, subx_, suby_, rows, [&](int i, const simd::BlockNoiseRow& nz) {
             const int y = y0 + i;
+            const Pixel* luma = subx_ ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
+            const int luma_width = subx_ ? pw : width_;
             if constexpr (sizeof(Pixel) == 1)
-                simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                          width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl],
-                                          scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
+                simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, 0,
+                                          chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
+                                          clip_.min_value, clip_.max_chroma);
             else
-                simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), src.planes[0].row<Pixel>(y << suby_),
-                                           width_, nz, pw, subx_, chroma_index_[pl], scaling_[pl],
-                                           scaling_shift, bit_depth_, clip_.min_value, clip_.max_chroma);
+                simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, 0,
+                                           chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
+                                           clip_.min_value, clip_.max_chroma);
         });
     });
 }

@@ -57,6 +57,15 @@ int chroma_scaling_index(const Pixel* luma, int luma_width, int x, int subsampli
     return std::clamp((combined >> 6) + index.offset * (1 << (bit_depth - 8)), 0, (1 << bit_depth) - 1);
 }
 
+// average_luma of chroma_scaling_index with horizontal subsampling, for chroma columns
+// 0..width-1: both chroma planes index their scaling by it, so the optimized synthesis makes
+// it once per row and hands it to both as unsubsampled luma.
+template <typename Pixel>
+void co_sited_luma_row(const Pixel* luma, int luma_width, int width, Pixel* out) {
+    for (int x = 0; x < width; ++x)
+        out[x] = static_cast<Pixel>((luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1);
+}
+
 // One chroma row (see chroma_scaling_index for `luma`).
 template <typename Pixel>
 void blend_chroma_row(const Pixel* src, Pixel* dst, const Pixel* luma, int luma_width, const int16_t* noise,

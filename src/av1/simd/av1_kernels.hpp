@@ -58,6 +58,10 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                           const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 
+// Twins of co_sited_luma_row.
+void co_sited_luma_row_u8(const uint8_t* luma, int luma_width, int width, uint8_t* out);
+void co_sited_luma_row_u16(const uint16_t* luma, int luma_width, int width, uint16_t* out);
+
 // Twin of the vertical overlap of build_stripe_noise: cur[x] = clamp((old[x] * old_weight +
 // cur[x] * new_weight + 16) >> 5, gmin, gmax).
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,

@@ -475,8 +475,8 @@ public:
                 StoreByRows(c, rows, v[2], v[3], rel[2], rel[3], k + 2 * n);
                 continue;
             }
-            misses += !LookUpPair(c, in, k);
-            misses += !LookUpPair(c, in, k + 2 * n);
+            misses += !LookUpPair(c, in, k, false);
+            misses += !LookUpPair(c, in, k + 2 * n, false);
         }
         for (; k + 2 * n <= count; k += 2 * n) misses += !LookUpPair(c, in, k);
         // Noisy content: where more than half the pairs of a chunk missed the row test, the
@@ -520,7 +520,7 @@ public:
     }
     // One pair at in[k, k + 2 * Lanes) into scale_: by its own row test (true) or from the
     // two LUT entries and the interpolation (false).
-    HWY_INLINE bool LookUpPair(const Consts& c, const uint16_t* in, int k) {
+    HWY_INLINE bool LookUpPair(const Consts& c, const uint16_t* in, int k, bool try_rows = true) {
         const D16 d16;
         const hn::RebindToUnsigned<D16> du16;
         const hn::Repartition<uint8_t, D16> du8;
@@ -532,7 +532,7 @@ public:
         const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
         // (A first sample beyond the bit depth, which would name a row past the table,
         // takes the other form, whose byte indices cannot leave the LUT.)
-        if (row <= last_row_ &&
+        if (try_rows && row <= last_row_ &&
             hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
             StoreByRows(c, ThreeRows<D8x>::At(full_, row, last_row_), a, b, rel_a, rel_b, k);
             return true;
@@ -690,6 +690,64 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         bit_depth, min_value, max_value);
 }
 
+// co_sited_luma_row: the pair sums of a multiply-add by ones, halved with rounding by a
+// rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product). The columns
+// whose right luma sample lies past an odd-width row are left to the scalar tail.
+template <typename Pixel>
+HWY_INLINE void CoSitedLumaRow(const Pixel* luma, int luma_width, int width, Pixel* out) {
+    const hn::ScalableTag<uint16_t> du16;
+    const int n = int(hn::Lanes(du16));
+    const int pairs = std::min(width, luma_width / 2);
+    int x = 0;
+#if HWY_TARGET == HWY_AVX2
+    const __m256i half = _mm256_set1_epi16(1 << 14);
+    if constexpr (sizeof(Pixel) == 1) {
+        const __m256i ones = _mm256_set1_epi8(1);
+        for (; x + 2 * n <= pairs; x += 2 * n) {
+            const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
+            const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + 2 * n));
+            const __m256i avg_a = _mm256_mulhrs_epi16(_mm256_maddubs_epi16(a, ones), half);
+            const __m256i avg_b = _mm256_mulhrs_epi16(_mm256_maddubs_epi16(b, ones), half);
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
+                                _mm256_permute4x64_epi64(_mm256_packus_epi16(avg_a, avg_b), 0xD8));
+        }
+    } else {
+        const __m256i ones = _mm256_set1_epi16(1);
+        for (; x + n <= pairs; x += n) {
+            const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
+            const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + n));
+            // sums of two 12-bit samples fit int16
+            const __m256i sums = _mm256_packs_epi32(_mm256_madd_epi16(a, ones), _mm256_madd_epi16(b, ones));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
+                                _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
+        }
+    }
+#elif HWY_TARGET != HWY_SCALAR
+    if constexpr (sizeof(Pixel) == 1) {
+        const hn::Rebind<uint8_t, decltype(du16)> d8;
+        for (; x + n <= pairs; x += n) {
+            const auto p = hn::LoadU(du16, reinterpret_cast<const uint16_t*>(luma + 2 * x));
+            const auto avg = hn::AverageRound(hn::And(p, hn::Set(du16, uint16_t(0xFF))), hn::ShiftRight<8>(p));
+            hn::StoreU(hn::DemoteTo(d8, hn::BitCast(hn::RebindToSigned<decltype(du16)>(), avg)), d8, out + x);
+        }
+    } else {
+        for (; x + n <= pairs; x += n) {
+            const auto a = hn::LoadU(du16, luma + 2 * x), b = hn::LoadU(du16, luma + 2 * x + n);
+            hn::StoreU(hn::AverageRound(hn::ConcatEven(du16, b, a), hn::ConcatOdd(du16, b, a)), du16, out + x);
+        }
+    }
+#endif
+    for (; x < width; ++x)
+        out[x] = static_cast<Pixel>((luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1);
+}
+
+void CoSitedLumaRowU8(const uint8_t* luma, int luma_width, int width, uint8_t* out) {
+    CoSitedLumaRow(luma, luma_width, width, out);
+}
+void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
+    CoSitedLumaRow(luma, luma_width, width, out);
+}
+
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
 // cross-faded before use), block by block as AddBlockNoise reads it.
 void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
@@ -762,6 +820,8 @@ HWY_EXPORT(BlendLumaRowU16);
 HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
+HWY_EXPORT(CoSitedLumaRowU8);
+HWY_EXPORT(CoSitedLumaRowU16);
 HWY_EXPORT(AssembleNoiseRow);
 HWY_EXPORT(AssembleCrossFadedRow);
 
@@ -789,6 +849,12 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax) {
     HWY_DYNAMIC_DISPATCH(CrossFadeRow)(old_row, cur, width, old_weight, new_weight, gmin, gmax);
+}
+void co_sited_luma_row_u8(const uint8_t* luma, int luma_width, int width, uint8_t* out) {
+    HWY_DYNAMIC_DISPATCH(CoSitedLumaRowU8)(luma, luma_width, width, out);
+}
+void co_sited_luma_row_u16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
+    HWY_DYNAMIC_DISPATCH(CoSitedLumaRowU16)(luma, luma_width, width, out);
 }
 void assemble_noise_row(const BlockNoiseRow& noise, int width, int16_t* out) {
     HWY_DYNAMIC_DISPATCH(AssembleNoiseRow)(noise, width, out);
