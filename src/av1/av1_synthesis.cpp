@@ -249,10 +249,12 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             });
             return;
         }
-        // Subsampled horizontally, both chroma planes scale by the same luma averages: the first
-        // plane with grain makes them for the stripe, and the kernels read them as unsubsampled
-        // luma.
-        if (subx_ && !co_sited_made) {
+        // Subsampled horizontally above 8 bits, both chroma planes scale by the same luma
+        // averages: the first plane with grain makes them for the stripe, and the kernels read
+        // them as unsubsampled luma. (At 8 bits the kernels' own averaging, three operations
+        // per vector, costs less than the extra pass: about 1 % of a frame in one process.)
+        const bool share_co_sited = subx_ && sizeof(Pixel) > 1;
+        if (share_co_sited && !co_sited_made) {
             // sized once for a whole stripe's chroma rows at this depth (a shorter last stripe
             // first must not leave a later frame to grow it)
             const std::size_t stripe_rows = std::size_t(kBlockSize >> suby_);
@@ -260,25 +262,24 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             if (scratch.co_sited_luma.size() < need) scratch.co_sited_luma.resize(need);
             Pixel* out = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());
             for (int i = 0; i < rows; ++i) {
-                const Pixel* luma = src.planes[0].row<Pixel>((y0 + i) << suby_);
-                if constexpr (sizeof(Pixel) == 1)
-                    simd::co_sited_luma_row_u8(luma, width_, pw, out + std::ptrdiff_t(i) * pw);
-                else
-                    simd::co_sited_luma_row_u16(luma, width_, pw, out + std::ptrdiff_t(i) * pw);
+                if constexpr (sizeof(Pixel) > 1)
+                    simd::co_sited_luma_row_u16(src.planes[0].row<Pixel>((y0 + i) << suby_), width_, pw,
+                                                out + std::ptrdiff_t(i) * pw);
             }
             co_sited_made = true;
         }
         const Pixel* co_sited = reinterpret_cast<const Pixel*>(scratch.co_sited_luma.data());
         blend_plane(pl, subx_, suby_, rows, [&](int i, const simd::BlockNoiseRow& nz) {
             const int y = y0 + i;
-            const Pixel* luma = subx_ ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
-            const int luma_width = subx_ ? pw : width_;
+            const Pixel* luma =
+                share_co_sited ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
+            const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
             if constexpr (sizeof(Pixel) == 1)
-                simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, 0,
+                simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, sx,
                                           chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                           clip_.min_value, clip_.max_chroma);
             else
-                simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, 0,
+                simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, sx,
                                            chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                            clip_.min_value, clip_.max_chroma);
         });

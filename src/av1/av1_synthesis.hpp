@@ -36,7 +36,7 @@ struct StripeScratch {
     std::vector<const int16_t*> block_rows, previous_block_rows;
     std::vector<uint32_t> seams;
     // The stripe's co-sited luma averages (co_sited_luma_row) of horizontally subsampled
-    // chroma, shared by both chroma planes: a stripe's chroma rows of samples (bytes at 8 bits).
+    // chroma above 8 bits, shared by both chroma planes: a stripe's chroma rows of samples.
     std::vector<uint16_t> co_sited_luma;
 
     // Sizes everything for pictures `luma_width` wide (no-op once large enough).

@@ -59,7 +59,7 @@ int chroma_scaling_index(const Pixel* luma, int luma_width, int x, int subsampli
 
 // average_luma of chroma_scaling_index with horizontal subsampling, for chroma columns
 // 0..width-1: both chroma planes index their scaling by it, so the optimized synthesis makes
-// it once per row and hands it to both as unsubsampled luma.
+// it once per row above 8 bits and hands it to both as unsubsampled luma.
 template <typename Pixel>
 void co_sited_luma_row(const Pixel* luma, int luma_width, int width, Pixel* out) {
     for (int x = 0; x < width; ++x)

@@ -58,8 +58,8 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                           const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 
-// Twins of co_sited_luma_row.
-void co_sited_luma_row_u8(const uint8_t* luma, int luma_width, int width, uint8_t* out);
+// Twin of co_sited_luma_row above 8 bits (where the synthesis shares it between the chroma
+// planes).
 void co_sited_luma_row_u16(const uint16_t* luma, int luma_width, int width, uint16_t* out);
 
 // Twin of the vertical overlap of build_stripe_noise: cur[x] = clamp((old[x] * old_weight +

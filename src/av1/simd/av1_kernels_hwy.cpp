@@ -690,62 +690,32 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         bit_depth, min_value, max_value);
 }
 
-// co_sited_luma_row: the pair sums of a multiply-add by ones, halved with rounding by a
-// rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product). The columns
-// whose right luma sample lies past an odd-width row are left to the scalar tail.
-template <typename Pixel>
-HWY_INLINE void CoSitedLumaRow(const Pixel* luma, int luma_width, int width, Pixel* out) {
+// co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
+// rounding by a rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product).
+// The column whose right luma sample lies past an odd-width row is left to the scalar tail.
+void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
     const hn::ScalableTag<uint16_t> du16;
-    const int n = int(hn::Lanes(du16));
-    const int pairs = std::min(width, luma_width / 2);
+    [[maybe_unused]] const int n = int(hn::Lanes(du16));
+    [[maybe_unused]] const int pairs = std::min(width, luma_width / 2);
     int x = 0;
 #if HWY_TARGET == HWY_AVX2
-    const __m256i half = _mm256_set1_epi16(1 << 14);
-    if constexpr (sizeof(Pixel) == 1) {
-        const __m256i ones = _mm256_set1_epi8(1);
-        for (; x + 2 * n <= pairs; x += 2 * n) {
-            const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
-            const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + 2 * n));
-            const __m256i avg_a = _mm256_mulhrs_epi16(_mm256_maddubs_epi16(a, ones), half);
-            const __m256i avg_b = _mm256_mulhrs_epi16(_mm256_maddubs_epi16(b, ones), half);
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
-                                _mm256_permute4x64_epi64(_mm256_packus_epi16(avg_a, avg_b), 0xD8));
-        }
-    } else {
-        const __m256i ones = _mm256_set1_epi16(1);
-        for (; x + n <= pairs; x += n) {
-            const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
-            const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + n));
-            // sums of two 12-bit samples fit int16
-            const __m256i sums = _mm256_packs_epi32(_mm256_madd_epi16(a, ones), _mm256_madd_epi16(b, ones));
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
-                                _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
-        }
+    const __m256i half = _mm256_set1_epi16(1 << 14), ones = _mm256_set1_epi16(1);
+    for (; x + n <= pairs; x += n) {
+        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
+        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + n));
+        // sums of two 12-bit samples fit int16
+        const __m256i sums = _mm256_packs_epi32(_mm256_madd_epi16(a, ones), _mm256_madd_epi16(b, ones));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
+                            _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
     }
 #elif HWY_TARGET != HWY_SCALAR
-    if constexpr (sizeof(Pixel) == 1) {
-        const hn::Rebind<uint8_t, decltype(du16)> d8;
-        for (; x + n <= pairs; x += n) {
-            const auto p = hn::LoadU(du16, reinterpret_cast<const uint16_t*>(luma + 2 * x));
-            const auto avg = hn::AverageRound(hn::And(p, hn::Set(du16, uint16_t(0xFF))), hn::ShiftRight<8>(p));
-            hn::StoreU(hn::DemoteTo(d8, hn::BitCast(hn::RebindToSigned<decltype(du16)>(), avg)), d8, out + x);
-        }
-    } else {
-        for (; x + n <= pairs; x += n) {
-            const auto a = hn::LoadU(du16, luma + 2 * x), b = hn::LoadU(du16, luma + 2 * x + n);
-            hn::StoreU(hn::AverageRound(hn::ConcatEven(du16, b, a), hn::ConcatOdd(du16, b, a)), du16, out + x);
-        }
+    for (; x + n <= pairs; x += n) {
+        const auto a = hn::LoadU(du16, luma + 2 * x), b = hn::LoadU(du16, luma + 2 * x + n);
+        hn::StoreU(hn::AverageRound(hn::ConcatEven(du16, b, a), hn::ConcatOdd(du16, b, a)), du16, out + x);
     }
 #endif
     for (; x < width; ++x)
-        out[x] = static_cast<Pixel>((luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1);
-}
-
-void CoSitedLumaRowU8(const uint8_t* luma, int luma_width, int width, uint8_t* out) {
-    CoSitedLumaRow(luma, luma_width, width, out);
-}
-void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
-    CoSitedLumaRow(luma, luma_width, width, out);
+        out[x] = static_cast<uint16_t>((luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1);
 }
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
@@ -820,7 +790,6 @@ HWY_EXPORT(BlendLumaRowU16);
 HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
-HWY_EXPORT(CoSitedLumaRowU8);
 HWY_EXPORT(CoSitedLumaRowU16);
 HWY_EXPORT(AssembleNoiseRow);
 HWY_EXPORT(AssembleCrossFadedRow);
@@ -849,9 +818,6 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax) {
     HWY_DYNAMIC_DISPATCH(CrossFadeRow)(old_row, cur, width, old_weight, new_weight, gmin, gmax);
-}
-void co_sited_luma_row_u8(const uint8_t* luma, int luma_width, int width, uint8_t* out) {
-    HWY_DYNAMIC_DISPATCH(CoSitedLumaRowU8)(luma, luma_width, width, out);
 }
 void co_sited_luma_row_u16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
     HWY_DYNAMIC_DISPATCH(CoSitedLumaRowU16)(luma, luma_width, width, out);
