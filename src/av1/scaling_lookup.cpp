@@ -57,6 +57,9 @@ void ScalingLookup::assign(const int* point_value, const int* point_scaling, int
         full_[static_cast<std::size_t>(index)] = static_cast<uint8_t>(v);
     }
 
+    full_chain_.assign(shift > 0 ? full_.size() : 0, 0);
+    for (std::size_t i = 0; i < full_chain_.size(); ++i)
+        full_chain_[i] = static_cast<uint8_t>(full_[i] ^ (i + 16 < full_.size() ? full_[i + 16] : 0));
     for (std::size_t i = 0; i < 256; ++i) next8_[i] = lut8_[i < 255 ? i + 1 : 255];
     for (std::size_t i = 0; i < 256; ++i) {
         const bool chained = (i >> 4) % 8 != 7;

@@ -38,6 +38,11 @@ public:
     // saturates past 127) cancels all rows but the index's own.
     const uint8_t* next8() const { return next8_.data(); }
     const uint8_t* lut8_chain() const { return lut8_chain_.data(); }
+    // The full table's rows XOR'd the same way over windows of 16 rows: entry i is
+    // full_table()[i] ^ full_table()[i + 16] (the last row: itself), so that a chain over rows
+    // base..base + 15 reads this table but at the two rows that end its halves (base + 7 and
+    // base + 15), which it reads from full_table() (above 8 bits only; empty at 8).
+    const uint8_t* full_chain() const { return full_chain_.data(); }
     const uint8_t* next8_chain() const { return next8_chain_.data(); }
     int bit_depth() const { return bit_depth_; }
 
@@ -45,6 +50,7 @@ private:
     int bit_depth_ = 8;
     std::vector<uint8_t> lut8_;
     std::vector<uint8_t> full_;  // precomputed scale_lut over the whole bit-depth range
+    std::vector<uint8_t> full_chain_;
     std::array<uint8_t, 256> next8_{}, lut8_chain_{}, next8_chain_{};
     // The points the tables were built from: a stream usually repeats them frame after
     // frame (only the seed changes), and then assign() has nothing to rebuild.
