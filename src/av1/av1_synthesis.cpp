@@ -112,14 +112,15 @@ int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
 
 template <typename Pixel, typename Blend>
 void Av1SynthesisContext::for_each_stripe_plane(const FrameView& src, const FrameView& dst, int stripe,
-                                                Blend&& blend) const {
+                                                Blend&& blend, bool luma_first) const {
     const int luma_y0 = stripe * kBlockSize;
     const int luma_rows = std::min(kBlockSize, height_ - luma_y0);
     // Chroma first: it reads the clean luma of this stripe, which must not yet have been
-    // overwritten when dst aliases src.
+    // overwritten when dst aliases src (unless `blend` keeps what chroma needs of it before
+    // overwriting it, and asks for luma first).
     const int planes = num_planes(format_);
     for (int n = 1; n <= planes; ++n) {
-        const int pl = n % planes;  // 1, 2, then 0
+        const int pl = luma_first ? n - 1 : n % planes;  // 1, 2, then 0 (or 0, 1, 2)
         const int sy = pl ? suby_ : 0;
         const int pw = plane_width(format_, pl, width_);
         const int ph = plane_height(format_, pl, height_);
@@ -231,6 +232,28 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         }
     };
 
+    // Subsampled horizontally above 8 bits, both chroma planes scale by the same luma averages
+    // (co_sited_luma_row): made once per stripe into scratch, and read by the chroma kernels
+    // as unsubsampled luma. The luma pass makes them from each clean luma row just before
+    // blending it (in place, before it is overwritten), while the row is in cache and the
+    // look-up's work hides the picture's memory; chroma then comes after luma. (At 8 bits the
+    // chroma kernels' own averaging, three operations per vector, costs less than sharing:
+    // about 1 % of a frame in one process.)
+    const bool share_co_sited = subx_ && sizeof(Pixel) > 1 && num_planes(format_) > 1;
+    const int chroma_width = plane_width(format_, 1, width_);
+    Pixel* co_sited = nullptr;
+    if (share_co_sited) {
+        // sized for a whole stripe's chroma rows (a shorter last stripe first must not leave a
+        // later frame to grow it)
+        const std::size_t need = (std::size_t(kBlockSize >> suby_) * std::size_t(chroma_width) * sizeof(Pixel) + 1) / 2;
+        if (scratch.co_sited_luma.size() < need) scratch.co_sited_luma.resize(need);
+        co_sited = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());
+    }
+    auto make_co_sited_row = [&](int luma_y, int chroma_row) {
+        if constexpr (sizeof(Pixel) > 1)
+            simd::co_sited_luma_row_u16(src.planes[0].row<Pixel>(luma_y), width_, chroma_width,
+                                        co_sited + std::ptrdiff_t(chroma_row) * chroma_width);
+    };
     bool co_sited_made = false;
     for_each_stripe_plane<Pixel>(src, dst, stripe, [&](int pl, int y0, int rows, int pw, int) {
         const PlaneView& s = src.planes[pl];
@@ -238,6 +261,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         if (pl == 0) {
             blend_plane(0, 0, 0, rows, [&](int i, const simd::BlockNoiseRow& nz) {
                 const int y = y0 + i;
+                if (share_co_sited && (i & ((1 << suby_) - 1)) == 0) make_co_sited_row(y, i >> suby_);
                 if constexpr (sizeof(Pixel) == 1)
                     simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
                                             scaling_[0], scaling_shift, clip_.min_value,
@@ -247,28 +271,13 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                              scaling_[0], scaling_shift, bit_depth_,
                                              clip_.min_value, clip_.max_luma);
             });
+            co_sited_made = share_co_sited;
             return;
         }
-        // Subsampled horizontally above 8 bits, both chroma planes scale by the same luma
-        // averages: the first plane with grain makes them for the stripe, and the kernels read
-        // them as unsubsampled luma. (At 8 bits the kernels' own averaging, three operations
-        // per vector, costs less than the extra pass: about 1 % of a frame in one process.)
-        const bool share_co_sited = subx_ && sizeof(Pixel) > 1;
-        if (share_co_sited && !co_sited_made) {
-            // sized once for a whole stripe's chroma rows at this depth (a shorter last stripe
-            // first must not leave a later frame to grow it)
-            const std::size_t stripe_rows = std::size_t(kBlockSize >> suby_);
-            const std::size_t need = (stripe_rows * std::size_t(pw) * sizeof(Pixel) + 1) / 2;
-            if (scratch.co_sited_luma.size() < need) scratch.co_sited_luma.resize(need);
-            Pixel* out = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());
-            for (int i = 0; i < rows; ++i) {
-                if constexpr (sizeof(Pixel) > 1)
-                    simd::co_sited_luma_row_u16(src.planes[0].row<Pixel>((y0 + i) << suby_), width_, pw,
-                                                out + std::ptrdiff_t(i) * pw);
-            }
+        if (share_co_sited && !co_sited_made) {  // luma without grain: no luma pass made them
+            for (int i = 0; i < rows; ++i) make_co_sited_row((y0 + i) << suby_, i);
             co_sited_made = true;
         }
-        const Pixel* co_sited = reinterpret_cast<const Pixel*>(scratch.co_sited_luma.data());
         blend_plane(pl, subx_, suby_, rows, [&](int i, const simd::BlockNoiseRow& nz) {
             const int y = y0 + i;
             const Pixel* luma =
@@ -283,7 +292,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                            chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                            clip_.min_value, clip_.max_chroma);
         });
-    });
+    }, share_co_sited);
 }
 
 void Av1SynthesisContext::apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1, Kernels kernels,

@@ -96,7 +96,8 @@ private:
     // stripe covers; planes without grain are copied here, the others handed to
     // blend(plane, first_row, rows, plane_width, plane_height).
     template <typename Pixel, typename Blend>
-    void for_each_stripe_plane(const FrameView& src, const FrameView& dst, int stripe, Blend&& blend) const;
+    void for_each_stripe_plane(const FrameView& src, const FrameView& dst, int stripe, Blend&& blend,
+                               bool luma_first = false) const;
 
     Av1FilmGrainParams p_;
     ChromaFormat format_ = ChromaFormat::k420;
