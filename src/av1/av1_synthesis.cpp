@@ -78,7 +78,7 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
     chroma_index_[2] = {p.chroma_scaling_from_luma != 0, p.cr_mult - 128, p.cr_luma_mult - 128, p.cr_offset - 256};
 }
 
-void StripeScratch::reserve(int luma_width) {
+void StripeScratch::reserve(int luma_width, std::size_t co_sited_bytes) {
     const std::size_t pitch = std::size_t(noise_stripe_width(luma_width, 0));
     const std::size_t blocks = std::size_t(num_blocks_across(luma_width));
     if (noise.size() < pitch * 2) noise.resize(pitch * 2);
@@ -88,12 +88,17 @@ void StripeScratch::reserve(int luma_width) {
     if (block_rows.size() < blocks) block_rows.resize(blocks);
     if (previous_block_rows.size() < blocks) previous_block_rows.resize(blocks);
     if (seams.size() < blocks) seams.resize(blocks);
+    for (DrawnOffsets& d : drawn_)
+        if (d.bytes.size() < blocks) d.bytes.resize(blocks);
+    const std::size_t co_sited = (co_sited_bytes + 1) / 2;
+    if (co_sited_luma.size() < co_sited) co_sited_luma.resize(co_sited);
 }
 
 const uint8_t* StripeScratch::block_offsets(int grain_seed, int stripe, int blocks) {
     DrawnOffsets& d = drawn_[stripe & 1];
     if (d.grain_seed != grain_seed || d.stripe != stripe || d.blocks != blocks) {
-        if (d.bytes.size() < std::size_t(blocks)) d.bytes.resize(std::size_t(blocks));  // once per width
+        // (reserve() sized it for the frame's width; this only guards a call without it)
+        if (d.bytes.size() < std::size_t(blocks)) d.bytes.resize(std::size_t(blocks));
         fill_stripe_block_offsets(grain_seed, stripe, blocks, d.bytes.data());
         d.grain_seed = grain_seed, d.stripe = stripe, d.blocks = blocks;
     }
@@ -109,6 +114,12 @@ std::size_t StripeScratch::bytes() const {
 }
 
 int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
+
+std::size_t Av1SynthesisContext::co_sited_bytes() const {
+    if (!subx_ || num_planes(format_) < 2 || bit_depth_ <= 8) return 0;
+    return std::size_t(kBlockSize >> suby_) * std::size_t(plane_width(format_, 1, width_)) *
+           std::size_t(bit_depth_ > 8 ? 2 : 1);
+}
 
 template <typename Pixel, typename Blend>
 void Av1SynthesisContext::for_each_stripe_plane(const FrameView& src, const FrameView& dst, int stripe,
@@ -163,7 +174,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     const bool overlap = p_.overlap_flag != 0;
     const GrainRange range = grain_range(bit_depth_);
     const int blocks = num_blocks_across(width_);
-    scratch.reserve(width_);
+    scratch.reserve(width_, co_sited_bytes());
     const std::size_t pitch = std::size_t(noise_stripe_width(width_, 0));
 
     // Each row's noise is read straight from the template at every block's offset; only the
@@ -236,19 +247,12 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     // (co_sited_luma_row): made once per stripe into scratch, and read by the chroma kernels
     // as unsubsampled luma. The luma pass makes them from each clean luma row just before
     // blending it (in place, before it is overwritten), while the row is in cache and the
-    // look-up's work hides the picture's memory; chroma then comes after luma. (At 8 bits the
-    // chroma kernels' own averaging, three operations per vector, costs less than sharing:
-    // about 1 % of a frame in one process.)
-    const bool share_co_sited = subx_ && sizeof(Pixel) > 1 && num_planes(format_) > 1;
+    // look-up's work hides the picture's memory; chroma then comes after luma. (At 8 bits,
+    // where the chroma kernels average a pair in three operations per vector, sharing measured
+    // no faster, so 8 bits keep chroma first and average in the kernels.)
+    const bool share_co_sited = co_sited_bytes() != 0;
     const int chroma_width = plane_width(format_, 1, width_);
-    Pixel* co_sited = nullptr;
-    if (share_co_sited) {
-        // sized for a whole stripe's chroma rows (a shorter last stripe first must not leave a
-        // later frame to grow it)
-        const std::size_t need = (std::size_t(kBlockSize >> suby_) * std::size_t(chroma_width) * sizeof(Pixel) + 1) / 2;
-        if (scratch.co_sited_luma.size() < need) scratch.co_sited_luma.resize(need);
-        co_sited = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());
-    }
+    Pixel* co_sited = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());  // sized by reserve()
     auto make_co_sited_row = [&](int luma_y, int chroma_row) {
         if constexpr (sizeof(Pixel) > 1)
             simd::co_sited_luma_row_u16(src.planes[0].row<Pixel>(luma_y), width_, chroma_width,
@@ -394,7 +398,7 @@ void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, co
     // Every worker's scratch is sized here, on the calling thread, so that a worker that
     // happened to get no stripe in the first frames cannot allocate later.
     if (kernels_ == Kernels::kOptimized)
-        for (auto& s : scratch_) s.reserve(src.width);
+        for (auto& s : scratch_) s.reserve(src.width, ctx.co_sited_bytes());
     pool_->parallel_for(ctx.stripe_count(), [&](int stripe, int worker) {
         ctx.apply_stripes(src, dst, stripe, stripe + 1, kernels_, scratch_[std::size_t(worker)]);
     });

@@ -39,8 +39,12 @@ struct StripeScratch {
     // chroma above 8 bits, shared by both chroma planes: a stripe's chroma rows of samples.
     std::vector<uint16_t> co_sited_luma;
 
-    // Sizes everything for pictures `luma_width` wide (no-op once large enough).
-    void reserve(int luma_width);
+    // Sizes everything for pictures `luma_width` wide, with `co_sited_bytes` of shared
+    // co-sited luma (Av1SynthesisContext::co_sited_bytes; no-op once large enough). Everything
+    // a stripe may need is sized here: the synthesizer calls it for every worker before a
+    // frame, so that a worker that got no stripe (or only some kinds) in the first frames
+    // cannot allocate in a later one.
+    void reserve(int luma_width, std::size_t co_sited_bytes);
     std::size_t bytes() const;
 
     // The random byte of every block of `stripe` (stripe_block_offsets). Every plane of a
@@ -70,6 +74,9 @@ public:
                int matrix_coefficients, Kernels templates = Kernels::kReference);
 
     int stripe_count() const;
+    // Bytes of a stripe's shared co-sited luma rows (StripeScratch::co_sited_luma): above 8
+    // bits with horizontally subsampled chroma, else 0 (nothing shared).
+    std::size_t co_sited_bytes() const;
     // Bytes held by templates and scaling tables.
     std::size_t table_bytes() const;
 
