@@ -8,6 +8,7 @@
 #include "bitstream/stream_report.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "cli_common.hpp"
+#include "grain_outputs.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::cli {
@@ -35,27 +36,6 @@ int run_inspect(const InspectOptions& o) {
     // recognisable in it does.
     if (s.units.empty()) throw Error(ErrorCode::kMalformedPayload, "'" + o.stream + "' holds no access unit");
     return 0;
-}
-
-// Writes beside the target and renames, so a failed run leaves no file.
-void write_file_atomically(const std::string& path, const std::string& text) {
-    if (path == "-") {
-        std::fputs(text.c_str(), stdout);
-        return;
-    }
-    const std::string tmp = path + ".tmp-filmgrain";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out.flush()) {
-            std::remove(tmp.c_str());
-            throw Error(ErrorCode::kIo, "cannot write '" + tmp + "'");
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw Error(ErrorCode::kIo, "cannot rename '" + tmp + "' to '" + path + "'");
-    }
 }
 
 // AV1: the frames' parameters from the stream's AFGS1 metadata or frame headers, in the AV1

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "cli_common.hpp"
+#include "grain_outputs.hpp"
 #include "filmgrain/error.hpp"
 #include "io/xz_file.hpp"
 #include "metadata/afgs1.hpp"
@@ -84,18 +85,8 @@ private:
     std::map<std::string, int> seen_;
 };
 
-void write_text(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        f << text;
-        if (!f) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
-    }
-    std::rename(tmp.c_str(), path.c_str());
-}
-
 void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-    write_text(path, std::string(bytes.begin(), bytes.end()));
+    write_file_atomically(path, std::string(bytes.begin(), bytes.end()));
 }
 
 // ------------------------------------------------------------------ AV1 forms
@@ -354,7 +345,7 @@ int run_convert(const ConvertOptions& o, bool sei_codec_given) {
         const FgcCodec codec = parse_fgc_codec(o.sei_codec);
         ParamsFile pf = read_fgc(from, o, codec);
         if (to == Form::kJson) {
-            write_text(o.output, params_file_to_json(pf).dump(2) + "\n");
+            write_file_atomically(o.output, params_file_to_json(pf).dump(2) + "\n");
         } else {
             std::vector<std::vector<uint8_t>> payloads;
             for (std::size_t k = 0; k < pf.frames.size(); ++k) {
@@ -375,7 +366,7 @@ int run_convert(const ConvertOptions& o, bool sei_codec_given) {
                                                    "payload (a different synthesis model)");
         const std::vector<Av1FrameParams> frames = read_av1(from, o, info, notes);
         if (to == Form::kJson) {
-            write_text(o.output, av1_frame_params_to_json(frames).dump(2) + "\n");
+            write_file_atomically(o.output, av1_frame_params_to_json(frames).dump(2) + "\n");
         } else if (to == Form::kTable) {
             write_aom_grain_table(table_from_frames(frames, info, notes), o.output);
         } else {

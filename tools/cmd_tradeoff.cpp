@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "grain_outputs.hpp"
 #include "filmgrain/error.hpp"
 #include "physical/boolean_covariance.hpp"
 #include "physical/boolean_model.hpp"
@@ -312,13 +313,7 @@ void register_tradeoff(CLI::App& app) {
             std::fprintf(stderr, "tradeoff: no plot: %s\n", why.c_str());
         const std::filesystem::path outp(o->output);
         if (outp.has_parent_path()) std::filesystem::create_directories(outp.parent_path());
-        const std::filesystem::path tmp = outp.parent_path() / (".filmgrain-partial-" + outp.filename().string());
-        {
-            std::ofstream f(tmp);
-            f << md.str();
-            if (!f) throw Error(ErrorCode::kIo, "cannot write " + o->output);
-        }
-        std::filesystem::rename(tmp, outp);
+        write_file_atomically(o->output, md.str());
         std::fprintf(stderr, "tradeoff: wrote %s%s\n", o->output.c_str(), plotted ? (" and " + o->plot).c_str() : "");
     });
 }

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "filmgrain/error.hpp"
+#include "io/video_file.hpp"
 #include "metadata/aom_grain_table.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "metadata/fgc_json.hpp"
@@ -12,6 +13,14 @@
 namespace filmgrain::cli {
 
 void write_file_atomically(const std::string& path, const std::string& bytes) {
+    if (path == "-" || is_stream_target(path)) {
+        std::FILE* f = path == "-" ? stdout : std::fopen(path.c_str(), "wb");
+        if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for writing");
+        const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0;
+        if (f != stdout) std::fclose(f);
+        if (!ok) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
+        return;
+    }
     const std::string tmp = path + ".tmp";
     {
         std::ofstream f(tmp, std::ios::binary);

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <utility>
 #include <sstream>
 #include <vector>
@@ -149,11 +150,22 @@ bool VideoReader::read(FrameBuffer& frame) {
     return true;
 }
 
+bool is_stream_target(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    return !ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
+           !std::filesystem::is_directory(st);
+}
+
 VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4m)
     : path_(path), info_(info), y4m_(y4m) {
     if (path == "-") {
         f_ = stdout;
         to_stdout_ = true;
+    } else if (is_stream_target(path)) {
+        f_ = std::fopen(path.c_str(), "wb");
+        if (!f_) throw Error(ErrorCode::kIo, "cannot open output '" + path + "': " + std::strerror(errno));
+        direct_ = true;
     } else {
         tmp_path_ = path + ".tmp-" + std::to_string(::getpid());
         f_ = std::fopen(tmp_path_.c_str(), "wb");
@@ -171,7 +183,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4
 VideoWriter::~VideoWriter() {
     if (!to_stdout_ && f_) {
         std::fclose(f_);
-        if (!committed_) std::remove(tmp_path_.c_str());
+        if (!committed_ && !direct_) std::remove(tmp_path_.c_str());
     }
 }
 
@@ -237,10 +249,14 @@ void VideoWriter::commit() {
     }
     if (std::fclose(f_) != 0) {
         f_ = nullptr;
-        std::remove(tmp_path_.c_str());
+        if (!direct_) std::remove(tmp_path_.c_str());
         throw Error(ErrorCode::kIo, "write error on '" + path_ + "'");
     }
     f_ = nullptr;
+    if (direct_) {
+        committed_ = true;
+        return;
+    }
     if (std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
         std::remove(tmp_path_.c_str());
         throw Error(ErrorCode::kIo, "cannot rename output into '" + path_ + "': " + std::strerror(errno));

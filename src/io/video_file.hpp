@@ -41,10 +41,17 @@ private:
     int frames_ = 0;
 };
 
+// True when `path` names something other than a regular file or directory: a device such as
+// /dev/null, a FIFO or a socket. Output goes straight to those: renaming a finished temporary
+// over them would replace the device or pipe with a plain file (and a reader of the pipe
+// would never see the data), and there is no file to leave half-written.
+bool is_stream_target(const std::string& path);
+
 class VideoWriter {
 public:
     // Writes to a temporary file beside `path`; commit() renames it into place. Without
-    // commit() (an error) the temporary is removed and `path` is never created.
+    // commit() (an error) the temporary is removed and `path` is never created. "-" writes to
+    // stdout, and a device or pipe (is_stream_target) is written directly.
     VideoWriter(const std::string& path, const VideoInfo& info, bool y4m);
     ~VideoWriter();
     void write(const FrameBuffer& frame);
@@ -56,6 +63,7 @@ public:
 private:
     std::FILE* f_ = nullptr;
     bool to_stdout_ = false;
+    bool direct_ = false;  // a device or pipe, written without a temporary
     std::string path_, tmp_path_;
     VideoInfo info_;
     bool y4m_;

@@ -3,11 +3,14 @@
 // parameters as JSON and SEI payloads, all give the same output picture for picture; the
 // parameters read back equal those written. A damaged AFGS1 payload is an error naming the
 // file and the element, with no output left behind.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "conformance_case.hpp"
 #include "metadata/av1_params_json.hpp"
@@ -200,4 +203,49 @@ TEST_F(ParamsConvertCli, FgcJsonAndSeiRoundTripApplyIdentically) {
     std::string log;
     EXPECT_NE(tool("params convert " + p("f.json") + " -o " + p("x.tbl"), &log), 0);
     EXPECT_FALSE(fs::exists(dir / "x.tbl"));
+}
+
+// Output into a pipe (or a device such as /dev/null) goes straight into it: a temporary
+// renamed over the path would replace the pipe with a plain file, its reader would get
+// nothing, and /dev/null would stop being a device. Both the frame writer (`apply`) and the
+// text writer (`params convert`).
+TEST_F(ParamsConvertCli, OutputIntoAPipeReachesItsReaderAndLeavesAPipe) {
+    write("p.json", kAv1Json);
+    const std::string want = apply("--params " + p("p.json"), "file.yuv");
+    auto through_pipe = [&](const std::string& args, const std::string& name) {
+        const fs::path pipe = dir / name;
+        EXPECT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+        // The read end, and a write end of our own held until the tool is done, so that the
+        // reader sees the end of the data only then, whatever the tool did with the path.
+        const int rfd = ::open(pipe.c_str(), O_RDONLY | O_NONBLOCK);
+        EXPECT_GE(rfd, 0);
+        ::fcntl(rfd, F_SETFL, ::fcntl(rfd, F_GETFL) & ~O_NONBLOCK);
+        const int hold = ::open(pipe.c_str(), O_WRONLY);
+        EXPECT_GE(hold, 0);
+        std::string got;
+        std::thread reader([&] {
+            char buf[65536];
+            for (ssize_t r; (r = ::read(rfd, buf, sizeof buf)) > 0;) got.append(buf, std::size_t(r));
+        });
+        std::string log;
+        EXPECT_EQ(tool(args + " -o " + p(name), &log), 0) << log;
+        ::close(hold);
+        reader.join();
+        ::close(rfd);
+        EXPECT_TRUE(fs::is_fifo(pipe)) << args;
+        fs::remove(pipe);
+        return got;
+    };
+    // (sizes and a flag, not the bytes: a failure would print whole frames)
+    const std::string frames =
+        through_pipe("apply -q -i " + p("in.yuv") + " --size 176x144 --pix-fmt yuv420p --params " + p("p.json"),
+                     "pipe.yuv");
+    EXPECT_EQ(frames.size(), want.size());
+    EXPECT_TRUE(frames == want);
+    convert(p("p.json") + " -o " + p("p.tbl"));
+    const std::string table = through_pipe("params convert -q " + p("p.json"), "pipe.tbl");
+    EXPECT_EQ(table.size(), read("p.tbl").size());
+    EXPECT_TRUE(table == read("p.tbl"));
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
