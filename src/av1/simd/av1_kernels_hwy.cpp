@@ -19,6 +19,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 // target, and a vector never spans two blocks.
 using D16 = hn::CappedTag<int16_t, 16>;
 using D32 = hn::CappedTag<int32_t, 8>;  // as many lanes as D16 has, or half
+// The loops below are lambdas instantiated per form of the overlap; GCC otherwise keeps some
+// of them out of line (8 bits went from 1.02 to 1.48 ms per frame that way).
+#define HWY_INLINE_LAMBDA __attribute__((always_inline))
 constexpr int kChunk = 256;             // samples looked up at once
 
 // Constants of the horizontal overlap fade, made once per row. The weights of lanes 2 and up
@@ -43,16 +46,39 @@ HWY_INLINE FadeConstants FadeConstantsOf(const BlockNoiseRow& row) {
 // with the left block (7.18.3.5), given as seams or faded here. At least two lanes. The
 // fade's Round2(sum, 5) is a rounding high multiply by 1 << 10; the sums fit 16 bits up to
 // 10 bits (|noise| <= 512, weights summing to at most 45), the depths that fade here.
-HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own,
-                                          const FadeConstants& c) {
+HWY_INLINE hn::Vec<D16> SeamOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own) {
     const hn::Repartition<uint32_t, D16> d32;
-    if (row.seams) return hn::IfThenElse(hn::FirstN(d16, 2), hn::BitCast(d16, hn::Set(d32, row.seams[b])), own);
-    if (!row.fade || b == 0) return own;
+    return hn::IfThenElse(hn::FirstN(d16, 2), hn::BitCast(d16, hn::Set(d32, row.seams[b])), own);
+}
+HWY_INLINE hn::Vec<D16> FadeOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own,
+                                    const FadeConstants& c) {
+    const hn::Repartition<uint32_t, D16> d32;
     uint32_t left_pair;
     std::memcpy(&left_pair, row.blocks[b - 1] + row.block_width, sizeof left_pair);
     const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
     const auto sum = hn::Add(hn::Mul(left, c.w_old), hn::Mul(own, c.w_new));
     return hn::Min(hn::Max(hn::MulFixedPoint15(sum, c.round), c.gmin), c.gmax);
+}
+HWY_INLINE hn::Vec<D16> FirstNoiseOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn::Vec<D16> own,
+                                          const FadeConstants& c) {
+    if (row.seams) return SeamOfBlock(d16, row, b, own);
+    if (!row.fade || b == 0) return own;
+    return FadeOfBlock(d16, row, b, own, c);
+}
+
+// Calls body(first_of_block), first_of_block(b, own) being FirstNoiseOfBlock with the
+// overlap's form (seams, fade or none) decided here, once per row, instead of per block.
+template <class Body>
+HWY_INLINE void WithFirstOfBlock(const BlockNoiseRow& row, const FadeConstants& fade, Body&& body) {
+    const D16 d16;
+    if (row.seams)
+        body([&](int b, hn::Vec<D16> own) HWY_INLINE_LAMBDA { return SeamOfBlock(d16, row, b, own); });
+    else if (row.fade)
+        body([&](int b, hn::Vec<D16> own) HWY_INLINE_LAMBDA {
+            return b == 0 ? own : FadeOfBlock(d16, row, b, own, fade);
+        });
+    else
+        body([](int, hn::Vec<D16> own) HWY_INLINE_LAMBDA { return own; });
 }
 
 // Lanes [j, j + Lanes) of block b's row, its first vector (j = 0) with the horizontal
@@ -79,7 +105,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
     const FadeConstants fade = FadeConstantsOf(row);
     const bool overlapped = row.seams || row.fade;
-    auto blend = [&](int k, hn::Vec<D16> noise) {
+    auto blend = [&](int k, hn::Vec<D16> noise) HWY_INLINE_LAMBDA {
         const auto add = hn::MulFixedPoint15(scale_at(k), noise);
         hn::Vec<D16> orig;
         if constexpr (sizeof(Pixel) == 1)
@@ -102,26 +128,35 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     if constexpr (sizeof(Pixel) == 1) {
         if (n == 16 && (bw == 2 * n || bw == n)) {
             const __m256i min8 = _mm256_set1_epi8(char(min_value)), max8 = _mm256_set1_epi8(char(max_value));
-            auto sum = [&](int k, hn::Vec<D16> noise) {
+            auto sum = [&](int k, hn::Vec<D16> noise) HWY_INLINE_LAMBDA {
                 const auto orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
                 return hn::Add(orig, hn::MulFixedPoint15(scale_at(k), noise));
             };
             int k = 0, b = x / bw;
-            for (; k + 2 * n <= count; k += 2 * n) {
-                hn::Vec<D16> s0, s1;
-                if (bw == 2 * n) {
-                    s0 = sum(k, BlockNoiseAt(d16, row, b, 0, fade));
-                    s1 = sum(k + n, BlockNoiseAt(d16, row, b, n, fade));
-                    b += 1;
-                } else {
-                    s0 = sum(k, BlockNoiseAt(d16, row, b, 0, fade));
-                    s1 = sum(k + n, BlockNoiseAt(d16, row, b + 1, 0, fade));
-                    b += 2;
-                }
-                __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi16(s0.raw, s1.raw), 0xD8);
-                packed = _mm256_min_epu8(_mm256_max_epu8(packed, min8), max8);
-                _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + x + k), packed);
-            }
+            // one loop per block width and form of the overlap, so that no block tests them
+            WithFirstOfBlock(row, fade, [&](auto first_of_block) HWY_INLINE_LAMBDA {
+                auto pairs = [&](auto one_block) HWY_INLINE_LAMBDA {
+                    for (; k + 2 * n <= count; k += 2 * n) {
+                        hn::Vec<D16> s0, s1;
+                        if constexpr (decltype(one_block)::value) {
+                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.blocks[b])));
+                            s1 = sum(k + n, hn::LoadU(d16, row.blocks[b] + n));
+                            b += 1;
+                        } else {
+                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.blocks[b])));
+                            s1 = sum(k + n, first_of_block(b + 1, hn::LoadU(d16, row.blocks[b + 1])));
+                            b += 2;
+                        }
+                        __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi16(s0.raw, s1.raw), 0xD8);
+                        packed = _mm256_min_epu8(_mm256_max_epu8(packed, min8), max8);
+                        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + x + k), packed);
+                    }
+                };
+                if (bw == 2 * n)
+                    pairs(std::true_type());
+                else
+                    pairs(std::false_type());
+            });
             if (k < count) blend(k, BlockNoiseAt(d16, row, b, 0, fade));  // one vector left: a block's first
             return;
         }
@@ -131,10 +166,11 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     // Whole blocks of whole vectors (every vector target: blocks of 16 or 32 samples), with
     // the vectors per block and the overlap's form fixed for the loop, so that a block costs
     // its vectors and no per-block tests. (Not compiled where the 8-bit AVX2 form above
-    // always returns: there its mere presence made that form 8 % slower.)
+    // always returns: there its mere presence made that form 8 % slower before the lambdas
+    // were forced inline, and no faster after.)
     constexpr bool kWholeBlocks = !(HWY_TARGET == HWY_AVX2 && sizeof(Pixel) == 1);
     if constexpr (kWholeBlocks) if (n >= 2 && bw % n == 0) {
-        auto whole_blocks = [&](auto vectors, auto first_of_block) {
+        auto whole_blocks = [&](auto vectors, auto first_of_block) HWY_INLINE_LAMBDA {
             constexpr int kVectors = decltype(vectors)::value;
             for (; k + kVectors * n <= count; k += kVectors * n, ++b) {
                 const int16_t* own = row.blocks[b];
@@ -142,18 +178,9 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
                 for (int v = 1; v < kVectors; ++v) blend(k + v * n, hn::LoadU(d16, own + v * n));
             }
         };
-        auto with_overlap = [&](auto vectors) {
-            const hn::Repartition<uint32_t, D16> d32;
-            if (row.seams)
-                whole_blocks(vectors, [&](int bb, hn::Vec<D16> own) {
-                    return hn::IfThenElse(hn::FirstN(d16, 2), hn::BitCast(d16, hn::Set(d32, row.seams[bb])), own);
-                });
-            else if (row.fade)
-                whole_blocks(vectors, [&](int bb, hn::Vec<D16> own) {
-                    return bb == 0 ? own : FirstNoiseOfBlock(d16, row, bb, own, fade);
-                });
-            else
-                whole_blocks(vectors, [](int, hn::Vec<D16> own) { return own; });
+        auto with_overlap = [&](auto vectors) HWY_INLINE_LAMBDA {
+            WithFirstOfBlock(row, fade,
+                             [&](auto first_of_block) HWY_INLINE_LAMBDA { whole_blocks(vectors, first_of_block); });
         };
         switch (bw / n) {
             case 1: with_overlap(std::integral_constant<int, 1>()); break;
