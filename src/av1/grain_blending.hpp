@@ -42,28 +42,32 @@ void blend_luma_row(const Pixel* src, Pixel* dst, const int16_t* noise, int widt
     }
 }
 
+// The luma co-sited with chroma column x when chroma is subsampled horizontally: the pair's
+// average, its right sample clamped to the picture (odd widths repeat the last column).
+template <typename Pixel>
+int co_sited_luma(const Pixel* luma, int luma_width, int x) {
+    return (luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1;
+}
+
 // The scaling index (`merged`) of chroma sample x with value `orig`. `luma` is the clean
-// (pre-grain) luma row co-sited with the chroma row; with horizontal subsampling the two luma
-// samples are averaged, the right one clamped to the picture (odd widths repeat the last
-// column).
+// (pre-grain) luma row co-sited with the chroma row (averaged in pairs by co_sited_luma with
+// horizontal subsampling).
 template <typename Pixel>
 int chroma_scaling_index(const Pixel* luma, int luma_width, int x, int subsampling_x, int orig,
                          const ChromaScalingIndex& index, int bit_depth) {
-    const int lx = x << subsampling_x;
-    int average_luma = luma[lx];
-    if (subsampling_x) average_luma = (average_luma + luma[std::min(lx + 1, luma_width - 1)] + 1) >> 1;
+    const int average_luma = subsampling_x ? co_sited_luma(luma, luma_width, x) : luma[x];
     if (index.from_luma) return average_luma;
     const int combined = average_luma * index.luma_mult + orig * index.mult;
     return std::clamp((combined >> 6) + index.offset * (1 << (bit_depth - 8)), 0, (1 << bit_depth) - 1);
 }
 
-// average_luma of chroma_scaling_index with horizontal subsampling, for chroma columns
-// 0..width-1: both chroma planes index their scaling by it, so the optimized synthesis makes
-// it once per row above 8 bits and hands it to both as unsubsampled luma.
+// co_sited_luma for chroma columns 0..width-1: both chroma planes index their scaling by it,
+// so the optimized synthesis makes it once per row above 8 bits and hands it to both as
+// unsubsampled luma.
 template <typename Pixel>
 void co_sited_luma_row(const Pixel* luma, int luma_width, int width, Pixel* out) {
     for (int x = 0; x < width; ++x)
-        out[x] = static_cast<Pixel>((luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1);
+        out[x] = static_cast<Pixel>(co_sited_luma(luma, luma_width, x));
 }
 
 // One chroma row (see chroma_scaling_index for `luma`).

@@ -580,46 +580,29 @@ public:
     }
     // The q15 scales of the pair (a, b) into scale_[k, k + 2 * Lanes), every sample of it
     // within `rows` of the full table (rel_a, rel_b: its row numbers relative to
-    // rows.below, 0..2). The two vectors' low nibbles share one byte vector (even and odd
-    // bytes), so nothing crosses lanes.
+    // rows.below, 0..2). The two vectors' low nibbles share one byte vector (PackBytes).
     HWY_INLINE void StoreByRows(const Consts& c, const ThreeRows<hn::Repartition<uint8_t, D16>>& rows, hn::Vec<hn::RebindToUnsigned<D16>> a,
                                 hn::Vec<hn::RebindToUnsigned<D16>> b, hn::Vec<hn::RebindToUnsigned<D16>> rel_a,
                                 hn::Vec<hn::RebindToUnsigned<D16>> rel_b, int k) {
         const D16 d16;
-        const hn::RebindToUnsigned<D16> du16;
-        const hn::Repartition<uint8_t, D16> du8;
         const int n = int(hn::Lanes(d16));
-        const auto low = hn::BitCast(du8, hn::Or(hn::And(a, c.nibble), hn::ShiftLeft<8>(hn::And(b, c.nibble))));
-        const auto rel = hn::BitCast(du8, hn::Or(rel_a, hn::ShiftLeft<8>(rel_b)));
-        const auto got = hn::BitCast(du16, rows.Pick(low, rel, c.one8, c.two8));
-        hn::Store(hn::Mul(hn::BitCast(d16, hn::And(got, c.low_byte)), c.pow2), d16, scale_ + k);
-        hn::Store(hn::Mul(hn::BitCast(d16, hn::ShiftRight<8>(got)), c.pow2), d16, scale_ + k + n);
+        const auto low = PackBytes(hn::And(a, c.nibble), hn::And(b, c.nibble));
+        hn::Vec<D16> scale_a, scale_b;
+        UnpackBytes(c, rows.Pick(low, PackBytes(rel_a, rel_b), c.one8, c.two8), scale_a, scale_b);
+        hn::Store(hn::Mul(scale_a, c.pow2), d16, scale_ + k);
+        hn::Store(hn::Mul(scale_b, c.pow2), d16, scale_ + k + n);
     }
-    // Two vectors of 16-bit lanes below 256 as the bytes of one vector, and back: on x86 one
-    // unsigned saturating pack (per 128-bit block: the unpacks undo its order), elsewhere even
-    // and odd bytes.
+    // Two vectors of 16-bit lanes below 256 as the even and odd bytes of one byte vector (so
+    // that no byte crosses a lane on the way there and back), and back.
     static HWY_INLINE hn::Vec<hn::Repartition<uint8_t, D16>> PackBytes(hn::Vec<hn::RebindToUnsigned<D16>> a,
-                                            hn::Vec<hn::RebindToUnsigned<D16>> b) {
-#if HWY_TARGET == HWY_AVX2
-        return hn::Vec<hn::Repartition<uint8_t, D16>>{_mm256_packus_epi16(a.raw, b.raw)};
-#elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_SSSE3
-        return hn::Vec<hn::Repartition<uint8_t, D16>>{_mm_packus_epi16(a.raw, b.raw)};
-#else
+                                                                   hn::Vec<hn::RebindToUnsigned<D16>> b) {
         return hn::BitCast(hn::Repartition<uint8_t, D16>(), hn::Or(a, hn::ShiftLeft<8>(b)));
-#endif
     }
-    static HWY_INLINE void UnpackBytes(hn::Vec<hn::Repartition<uint8_t, D16>> v, hn::Vec<D16>& a, hn::Vec<D16>& b) {
-#if HWY_TARGET == HWY_AVX2
-        a = hn::Vec<D16>{_mm256_unpacklo_epi8(v.raw, _mm256_setzero_si256())};
-        b = hn::Vec<D16>{_mm256_unpackhi_epi8(v.raw, _mm256_setzero_si256())};
-#elif HWY_TARGET == HWY_SSE4 || HWY_TARGET == HWY_SSSE3
-        a = hn::Vec<D16>{_mm_unpacklo_epi8(v.raw, _mm_setzero_si128())};
-        b = hn::Vec<D16>{_mm_unpackhi_epi8(v.raw, _mm_setzero_si128())};
-#else
-        const D16 d16;
-        a = hn::And(hn::BitCast(d16, v), hn::Set(d16, int16_t(0xFF)));
-        b = hn::BitCast(d16, hn::ShiftRight<8>(hn::BitCast(hn::RebindToUnsigned<D16>(), v)));
-#endif
+    static HWY_INLINE void UnpackBytes(const Consts& c, hn::Vec<hn::Repartition<uint8_t, D16>> v, hn::Vec<D16>& a,
+                                       hn::Vec<D16>& b) {
+        const hn::RebindToUnsigned<D16> du16;
+        a = hn::BitCast(D16(), hn::And(hn::BitCast(du16, v), c.low_byte));
+        b = hn::BitCast(D16(), hn::ShiftRight<8>(hn::BitCast(du16, v)));
     }
     // The q15 scales of four vectors into scale_[k, k + 4 * Lanes), every index of them
     // within rows base..base + 15 of the full table (idx: the index minus 16 * base, below
@@ -656,7 +639,7 @@ public:
         }
         for (int p = 0; p < 2; ++p) {
             hn::Vec<D16> a, b;
-            UnpackBytes(hn::Xor(r_lo[p], r_hi[p]), a, b);
+            UnpackBytes(c, hn::Xor(r_lo[p], r_hi[p]), a, b);
             hn::Store(hn::Mul(a, c.pow2), d16, scale_ + k + 2 * p * n);
             hn::Store(hn::Mul(b, c.pow2), d16, scale_ + k + (2 * p + 1) * n);
         }
@@ -685,11 +668,11 @@ public:
                                 hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
         hn::Vec<decltype(du8)> ends[2];
         LookUpVector<2>(du8, hn::BitCast(du8, top), tables_, ends);
-        const auto s = hn::BitCast(du16, ends[0]), e = hn::BitCast(du16, ends[1]);
-        const auto scale_a = Interpolate(hn::BitCast(d16, hn::And(s, low_byte)), hn::BitCast(d16, hn::And(e, low_byte)),
-                                         hn::BitCast(d16, a));
-        const auto scale_b = Interpolate(hn::BitCast(d16, hn::ShiftRight<8>(s)), hn::BitCast(d16, hn::ShiftRight<8>(e)),
-                                         hn::BitCast(d16, b));
+        hn::Vec<D16> start_a, start_b, end_a, end_b;
+        UnpackBytes(c, ends[0], start_a, start_b);
+        UnpackBytes(c, ends[1], end_a, end_b);
+        const auto scale_a = Interpolate(start_a, end_a, hn::BitCast(d16, a));
+        const auto scale_b = Interpolate(start_b, end_b, hn::BitCast(d16, b));
         hn::Store(hn::ShiftLeftSame(scale_a, up_shift_), d16, scale_ + k);
         hn::Store(hn::ShiftLeftSame(scale_b, up_shift_), d16, scale_ + k + n);
         return false;
@@ -859,7 +842,7 @@ void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t
     }
 #endif
     for (; x < width; ++x)
-        out[x] = static_cast<uint16_t>((luma[2 * x] + luma[std::min(2 * x + 1, luma_width - 1)] + 1) >> 1);
+        out[x] = static_cast<uint16_t>(co_sited_luma(luma, luma_width, x));
 }
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
