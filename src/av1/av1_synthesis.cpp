@@ -117,8 +117,7 @@ int Av1SynthesisContext::stripe_count() const { return num_stripes(height_); }
 
 std::size_t Av1SynthesisContext::co_sited_bytes() const {
     if (!subx_ || num_planes(format_) < 2 || bit_depth_ <= 8) return 0;
-    return std::size_t(kBlockSize >> suby_) * std::size_t(plane_width(format_, 1, width_)) *
-           std::size_t(bit_depth_ > 8 ? 2 : 1);
+    return std::size_t(kBlockSize >> suby_) * std::size_t(plane_width(format_, 1, width_)) * sizeof(uint16_t);
 }
 
 template <typename Pixel, typename Blend>

@@ -21,7 +21,7 @@ using D16 = hn::CappedTag<int16_t, 16>;
 using D32 = hn::CappedTag<int32_t, 8>;  // as many lanes as D16 has, or half
 // The loops below are lambdas instantiated per form of the overlap; GCC otherwise keeps some
 // of them out of line (8 bits went from 1.02 to 1.48 ms per frame that way).
-#define HWY_INLINE_LAMBDA __attribute__((always_inline))
+#define FG_INLINE_LAMBDA __attribute__((always_inline))
 constexpr int kChunk = 256;             // samples looked up at once
 
 // Constants of the horizontal overlap fade, made once per row. The weights of lanes 2 and up
@@ -72,13 +72,13 @@ template <class Body>
 HWY_INLINE void WithFirstOfBlock(const BlockNoiseRow& row, const FadeConstants& fade, Body&& body) {
     const D16 d16;
     if (row.seams)
-        body([&](int b, hn::Vec<D16> own) HWY_INLINE_LAMBDA { return SeamOfBlock(d16, row, b, own); });
+        body([&](int b, hn::Vec<D16> own) FG_INLINE_LAMBDA { return SeamOfBlock(d16, row, b, own); });
     else if (row.fade)
-        body([&](int b, hn::Vec<D16> own) HWY_INLINE_LAMBDA {
+        body([&](int b, hn::Vec<D16> own) FG_INLINE_LAMBDA {
             return b == 0 ? own : FadeOfBlock(d16, row, b, own, fade);
         });
     else
-        body([](int, hn::Vec<D16> own) HWY_INLINE_LAMBDA { return own; });
+        body([](int, hn::Vec<D16> own) FG_INLINE_LAMBDA { return own; });
 }
 
 // Lanes [j, j + Lanes) of block b's row, its first vector (j = 0) with the horizontal
@@ -105,7 +105,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
     const FadeConstants fade = FadeConstantsOf(row);
     const bool overlapped = row.seams || row.fade;
-    auto blend = [&](int k, hn::Vec<D16> noise) HWY_INLINE_LAMBDA {
+    auto blend = [&](int k, hn::Vec<D16> noise) FG_INLINE_LAMBDA {
         const auto add = hn::MulFixedPoint15(scale_at(k), noise);
         hn::Vec<D16> orig;
         if constexpr (sizeof(Pixel) == 1)
@@ -128,14 +128,14 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     if constexpr (sizeof(Pixel) == 1) {
         if (n == 16 && (bw == 2 * n || bw == n)) {
             const __m256i min8 = _mm256_set1_epi8(char(min_value)), max8 = _mm256_set1_epi8(char(max_value));
-            auto sum = [&](int k, hn::Vec<D16> noise) HWY_INLINE_LAMBDA {
+            auto sum = [&](int k, hn::Vec<D16> noise) FG_INLINE_LAMBDA {
                 const auto orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
                 return hn::Add(orig, hn::MulFixedPoint15(scale_at(k), noise));
             };
             int k = 0, b = x / bw;
             // one loop per block width and form of the overlap, so that no block tests them
-            WithFirstOfBlock(row, fade, [&](auto first_of_block) HWY_INLINE_LAMBDA {
-                auto pairs = [&](auto one_block) HWY_INLINE_LAMBDA {
+            WithFirstOfBlock(row, fade, [&](auto first_of_block) FG_INLINE_LAMBDA {
+                auto pairs = [&](auto one_block) FG_INLINE_LAMBDA {
                     for (; k + 2 * n <= count; k += 2 * n) {
                         hn::Vec<D16> s0, s1;
                         if constexpr (decltype(one_block)::value) {
@@ -170,7 +170,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     // were forced inline, and no faster after.)
     constexpr bool kWholeBlocks = !(HWY_TARGET == HWY_AVX2 && sizeof(Pixel) == 1);
     if constexpr (kWholeBlocks) if (n >= 2 && bw % n == 0) {
-        auto whole_blocks = [&](auto vectors, auto first_of_block) HWY_INLINE_LAMBDA {
+        auto whole_blocks = [&](auto vectors, auto first_of_block) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(vectors)::value;
             for (; k + kVectors * n <= count; k += kVectors * n, ++b) {
                 const int16_t* own = row.blocks[b];
@@ -178,9 +178,9 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
                 for (int v = 1; v < kVectors; ++v) blend(k + v * n, hn::LoadU(d16, own + v * n));
             }
         };
-        auto with_overlap = [&](auto vectors) HWY_INLINE_LAMBDA {
+        auto with_overlap = [&](auto vectors) FG_INLINE_LAMBDA {
             WithFirstOfBlock(row, fade,
-                             [&](auto first_of_block) HWY_INLINE_LAMBDA { whole_blocks(vectors, first_of_block); });
+                             [&](auto first_of_block) FG_INLINE_LAMBDA { whole_blocks(vectors, first_of_block); });
         };
         switch (bw / n) {
             case 1: with_overlap(std::integral_constant<int, 1>()); break;
