@@ -3,14 +3,11 @@
 // parameters as JSON and SEI payloads, all give the same output picture for picture; the
 // parameters read back equal those written. A damaged AFGS1 payload is an error naming the
 // file and the element, with no output left behind.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include "conformance_case.hpp"
 #include "metadata/av1_params_json.hpp"
@@ -213,27 +210,14 @@ TEST_F(ParamsConvertCli, OutputIntoAPipeReachesItsReaderAndLeavesAPipe) {
     write("p.json", kAv1Json);
     const std::string want = apply("--params " + p("p.json"), "file.yuv");
     auto through_pipe = [&](const std::string& args, const std::string& name) {
-        const fs::path pipe = dir / name;
-        EXPECT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
-        // The read end, and a write end of our own held until the tool is done, so that the
-        // reader sees the end of the data only then, whatever the tool did with the path.
-        const int rfd = ::open(pipe.c_str(), O_RDONLY | O_NONBLOCK);
-        EXPECT_GE(rfd, 0);
-        ::fcntl(rfd, F_SETFL, ::fcntl(rfd, F_GETFL) & ~O_NONBLOCK);
-        const int hold = ::open(pipe.c_str(), O_WRONLY);
-        EXPECT_GE(hold, 0);
-        std::string got;
-        std::thread reader([&] {
-            char buf[65536];
-            for (ssize_t r; (r = ::read(rfd, buf, sizeof buf)) > 0;) got.append(buf, std::size_t(r));
-        });
+        int status;
+        bool still_fifo;
         std::string log;
-        EXPECT_EQ(tool(args + " -o " + p(name), &log), 0) << log;
-        ::close(hold);
-        reader.join();
-        ::close(rfd);
-        EXPECT_TRUE(fs::is_fifo(pipe)) << args;
-        fs::remove(pipe);
+        const std::string got = read_through_fifo((dir / name).string(),
+                                                  std::string("'") + FILMGRAIN_TOOL_PATH + "' " + args + " -o " + p(name),
+                                                  &status, &still_fifo, &log);
+        EXPECT_EQ(status, 0) << log;
+        EXPECT_TRUE(still_fifo) << args;
         return got;
     };
     // (sizes and a flag, not the bytes: a failure would print whole frames)

@@ -91,6 +91,23 @@ TEST_F(PhysicalCli, RenderStills) {
         ASSERT_EQ(run("render " + p("in.pgm") + " -o " + p(out) + " --radius 0.3 --samples 32 -q", &log), 0) << out << log;
         EXPECT_TRUE(fs::exists(dir / out)) << out;
     }
+    // into a pipe: the reader gets the same PNG and the pipe stays a pipe (a temporary renamed
+    // over it would replace it)
+    {
+        int status;
+        bool still_fifo;
+        const std::string png = read_through_fifo(
+            (dir / "pipe.png").string(),
+            "'" + std::string(FILMGRAIN_TOOL_PATH) + "' render " + p("in.pgm") + " -o " + p("pipe.png") +
+                " --radius 0.3 --samples 32 -q",
+            &status, &still_fifo, &log);
+        EXPECT_EQ(status, 0) << log;
+        EXPECT_TRUE(still_fifo);
+        std::ifstream f(dir / "out.png", std::ios::binary);
+        const std::string file((std::istreambuf_iterator<char>(f)), {});
+        EXPECT_EQ(png.size(), file.size());
+        EXPECT_TRUE(png == file);
+    }
     ASSERT_EQ(run("render " + p("in.pgm") + " -o " + p("zoom.png") + " --zoom 2 --samples 16 --roi 10,10,40,30 -q", &log), 0) << log;
     ASSERT_EQ(run("stats --json --bins 4 " + p("in.pgm") + " " + p("out.png") + " > " + p("s.json"), &log), 0) << log;
     nlohmann::json j;

@@ -1,5 +1,11 @@
 #include "conformance_case.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <thread>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -88,6 +94,31 @@ int run_command(const std::string& cmd, std::string* log) {
         if (log) log->append(buf.data(), n);
     int status = pclose(p);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string read_through_fifo(const std::string& fifo, const std::string& cmd, int* status, bool* still_fifo,
+                              std::string* log) {
+    *status = -1;
+    *still_fifo = false;
+    if (::mkfifo(fifo.c_str(), 0600) != 0) return "";
+    // the read end, and a write end of our own held until the command is done
+    const int rfd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    if (rfd < 0) return "";
+    ::fcntl(rfd, F_SETFL, ::fcntl(rfd, F_GETFL) & ~O_NONBLOCK);
+    const int hold = ::open(fifo.c_str(), O_WRONLY);
+    std::string got;
+    std::thread reader([&] {
+        char buf[65536];
+        for (ssize_t r; (r = ::read(rfd, buf, sizeof buf)) > 0;) got.append(buf, std::size_t(r));
+    });
+    *status = run_command(cmd, log);
+    if (hold >= 0) ::close(hold);
+    reader.join();
+    ::close(rfd);
+    struct stat st {};
+    *still_fifo = ::lstat(fifo.c_str(), &st) == 0 && S_ISFIFO(st.st_mode);
+    std::filesystem::remove(fifo);
+    return got;
 }
 
 }  // namespace filmgrain::test_support

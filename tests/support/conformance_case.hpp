@@ -41,4 +41,12 @@ std::string describe_mismatch(const ConformanceCase& c, int frame, const uint8_t
 // Runs a command line; returns its exit status. Output goes to `log` when given.
 int run_command(const std::string& cmd, std::string* log = nullptr);
 
+// Makes a FIFO at `fifo`, runs `cmd` (which should write into it) and returns what a reader
+// of the FIFO received; *status gets the command's exit status and *still_fifo whether the
+// path is still a FIFO afterwards. The reader sees the end of the data only once the command
+// is done, whatever the command did with the path (so a replaced FIFO cannot hang the test).
+// The FIFO is removed before returning.
+std::string read_through_fifo(const std::string& fifo, const std::string& cmd, int* status, bool* still_fifo,
+                              std::string* log = nullptr);
+
 }  // namespace filmgrain::test_support
