@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "filmgrain/error.hpp"
-#include "io/video_file.hpp"
+#include "io/output_file.hpp"
 #include "metadata/aom_grain_table.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "metadata/fgc_json.hpp"
@@ -13,31 +13,13 @@
 namespace filmgrain::cli {
 
 void write_file_atomically(const std::string& path, const std::string& bytes) {
-    if (path == "-" || is_stream_target(path)) {
-        std::FILE* f = path == "-" ? stdout : std::fopen(path.c_str(), "wb");
-        if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for writing");
-        const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0;
-        if (f != stdout) std::fclose(f);
-        if (!ok) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
-        return;
-    }
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for writing");
-        f.write(bytes.data(), std::streamsize(bytes.size()));
-        if (!f) {
-            f.close();
-            std::remove(tmp.c_str());
-            throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw Error(ErrorCode::kIo, "cannot write '" + path + "': " + ec.message());
-    }
+    OutputFile out(path);
+    std::FILE* f = out.is_stdout() ? stdout : std::fopen(out.write_path().c_str(), "wb");
+    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for writing");
+    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0;
+    if (f != stdout) ok = std::fclose(f) == 0 && ok;
+    if (!ok) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
+    out.commit();
 }
 
 std::string fgc_params_json_text(const FgcParams& p) { return fgc_params_to_json(p).dump(1) + "\n"; }

@@ -9,8 +9,8 @@
 
 namespace filmgrain::cli {
 
-// `bytes` into `path` through a temporary beside it and a rename, so the file appears only
-// complete; "-" is stdout, and a device or pipe (is_stream_target) is written directly.
+// `bytes` into `path` (through OutputFile: the file appears only complete; "-" is stdout, and
+// a device or pipe is written directly).
 void write_file_atomically(const std::string& path, const std::string& bytes);
 
 // FGC: the single-object form (one SEI received with every picture).

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "filmgrain/error.hpp"
-#include "io/video_file.hpp"
+#include "io/output_file.hpp"
 
 #ifdef FILMGRAIN_HAVE_OIIO
 #include <OpenImageIO/imageio.h>
@@ -62,21 +62,12 @@ void write_still_image(const std::string& path, const StillImage& img) {
             const float v = img.channels[c].v[i];
             px[i * nc + c] = img.floating ? v : std::clamp(v, 0.f, 1.f);
         }
-    // The temporary keeps the extension, which is how OpenImageIO picks the format. A pipe or
-    // device is written directly (is_stream_target: a rename would replace it).
-    const std::filesystem::path p(path);
-    const bool direct = is_stream_target(path);
-    const std::filesystem::path target =
-        direct ? p : p.parent_path() / (".filmgrain-partial-" + p.stem().string() + p.extension().string());
+    OutputFile file(path);  // its temporary keeps the extension, by which OpenImageIO picks the format
     auto out = OIIO::ImageOutput::create(path);
     if (!out) throw Error(ErrorCode::kIo, "cannot write " + path + ": " + OIIO::geterror());
-    if (!out->open(target.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) || !out->close()) {
-        const std::string why = out->geterror();
-        std::error_code ec;
-        if (!direct) std::filesystem::remove(target, ec);
-        throw Error(ErrorCode::kIo, "cannot write " + path + ": " + why);
-    }
-    if (!direct) std::filesystem::rename(target, p);
+    if (!out->open(file.write_path(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()) || !out->close())
+        throw Error(ErrorCode::kIo, "cannot write " + path + ": " + out->geterror());
+    file.commit();
 }
 #endif
 

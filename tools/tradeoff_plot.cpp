@@ -5,7 +5,8 @@
 #include <filesystem>
 
 #ifdef FILMGRAIN_HAVE_OIIO
-#include "io/video_file.hpp"
+#include "filmgrain/error.hpp"
+#include "io/output_file.hpp"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -79,17 +80,19 @@ bool write_tradeoff_plot(const std::string& path, const std::vector<PlotPoint>& 
         OIIO::ImageBufAlgo::render_box(img, cx - 5, cy - 5, cx + 5, cy + 5, OIIO::cspan<float>(c, 3), true);
         text(cx + 9, cy - 6 + int(i % 2) * 14, p.label, 14, c);
     }
-    // through a temporary and a rename, but a pipe or device directly (is_stream_target)
-    const std::filesystem::path pth(path);
-    const bool direct = is_stream_target(path);
-    const std::filesystem::path target = direct ? pth : pth.parent_path() / (".filmgrain-partial-" + pth.filename().string());
-    std::string format = pth.extension().string();  // the target's own, since a temporary or
-    if (!format.empty()) format.erase(0, 1);          // a device may not carry it
-    if (!img.write(target.string(), OIIO::TypeUnknown, format)) {
+    OutputFile file(path);
+    std::string format = std::filesystem::path(path).extension().string();  // the target's own,
+    if (!format.empty()) format.erase(0, 1);                                  // which a device lacks
+    if (!img.write(file.write_path(), OIIO::TypeUnknown, format)) {
         if (why) *why = img.geterror();
         return false;
     }
-    if (!direct) std::filesystem::rename(target, pth);
+    try {
+        file.commit();
+    } catch (const Error& e) {
+        if (why) *why = e.what();
+        return false;
+    }
     return true;
 }
 #endif

@@ -10,6 +10,7 @@
 
 #include "analysis/plane_image.hpp"
 #include "filmgrain/error.hpp"
+#include "io/output_file.hpp"
 
 namespace filmgrain::analysis {
 namespace {
@@ -138,9 +139,9 @@ void write_analysis_report(const std::string& html_path, const ReportInput& in) 
     write_png((dir / scaling).string(), plot_scaling(in));
     write_png((dir / spectrum).string(), plot_spectrum(in));
     write_png((dir / crop).string(), plot_crops(in));
-    const std::string tmp = html_path + ".tmp";
+    OutputFile out(html_path);
     {
-        std::ofstream f(tmp);
+        std::ofstream f(out.write_path());
         if (!f) throw Error(ErrorCode::kIo, "cannot write '" + html_path + "'");
         f << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << html_escape(in.title)
           << "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:1em auto}"
@@ -165,9 +166,7 @@ void write_analysis_report(const std::string& html_path, const ReportInput& in) 
           << html_escape(in.parameters_text) << "</pre>\n</body></html>\n";
         if (!f) throw Error(ErrorCode::kIo, "cannot write '" + html_path + "'");
     }
-    std::error_code ec;
-    fs::rename(tmp, html_path, ec);
-    if (ec) throw Error(ErrorCode::kIo, "cannot write '" + html_path + "': " + ec.message());
+    out.commit();
 }
 
 }  // namespace filmgrain::analysis

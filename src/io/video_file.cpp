@@ -6,7 +6,6 @@
 #include <bit>
 #include <cctype>
 #include <cstring>
-#include <filesystem>
 #include <utility>
 #include <sstream>
 #include <vector>
@@ -150,27 +149,10 @@ bool VideoReader::read(FrameBuffer& frame) {
     return true;
 }
 
-bool is_stream_target(const std::string& path) {
-    std::error_code ec;
-    const std::filesystem::file_status st = std::filesystem::status(path, ec);
-    return !ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
-           !std::filesystem::is_directory(st);
-}
-
 VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4m)
-    : path_(path), info_(info), y4m_(y4m) {
-    if (path == "-") {
-        f_ = stdout;
-        to_stdout_ = true;
-    } else if (is_stream_target(path)) {
-        f_ = std::fopen(path.c_str(), "wb");
-        if (!f_) throw Error(ErrorCode::kIo, "cannot open output '" + path + "': " + std::strerror(errno));
-        direct_ = true;
-    } else {
-        tmp_path_ = path + ".tmp-" + std::to_string(::getpid());
-        f_ = std::fopen(tmp_path_.c_str(), "wb");
-        if (!f_) throw Error(ErrorCode::kIo, "cannot create output '" + path + "': " + std::strerror(errno));
-    }
+    : out_(path), info_(info), y4m_(y4m) {
+    f_ = out_.is_stdout() ? stdout : std::fopen(out_.write_path().c_str(), "wb");
+    if (!f_) throw Error(ErrorCode::kIo, "cannot create output '" + path + "': " + std::strerror(errno));
     if (y4m_) {
         std::string hdr = "YUV4MPEG2 W" + std::to_string(info.width) + " H" + std::to_string(info.height) + " F" +
                           std::to_string(info.fps_num) + ":" + std::to_string(info.fps_den) +
@@ -181,10 +163,7 @@ VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4
 }
 
 VideoWriter::~VideoWriter() {
-    if (!to_stdout_ && f_) {
-        std::fclose(f_);
-        if (!committed_ && !direct_) std::remove(tmp_path_.c_str());
-    }
+    if (f_ && f_ != stdout) std::fclose(f_);  // before out_ removes an uncommitted temporary
 }
 
 void VideoWriter::write(const FrameBuffer& frame) {
@@ -197,7 +176,7 @@ void VideoWriter::write(const FrameBuffer& frame) {
     } else {
         ok = std::fwrite(frame.bytes(), 1, frame.byte_size(), f_) == frame.byte_size();
     }
-    if (!ok) throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
+    if (!ok) throw Error(ErrorCode::kIo, "write error on '" + out_.path() + "': " + std::strerror(errno));
 }
 
 void VideoWriter::write(const FrameView& frame) {
@@ -208,7 +187,7 @@ void VideoWriter::write(const FrameView& frame) {
         return write(packed);
     }
     if (y4m_) std::fwrite("FRAME\n", 1, 6, f_);
-    if (std::fflush(f_) != 0) throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
+    if (std::fflush(f_) != 0) throw Error(ErrorCode::kIo, "write error on '" + out_.path() + "': " + std::strerror(errno));
     // One gathering write per IOV_MAX rows, straight from the picture's rows.
     std::vector<iovec>& rows = rows_;
     rows.clear();
@@ -224,7 +203,7 @@ void VideoWriter::write(const FrameView& frame) {
         const ssize_t n = ::writev(fd, rows.data() + i, count);
         if (n < 0) {
             if (errno == EINTR) continue;
-            throw Error(ErrorCode::kIo, "write error on '" + path_ + "': " + std::strerror(errno));
+            throw Error(ErrorCode::kIo, "write error on '" + out_.path() + "': " + std::strerror(errno));
         }
         // Skip what was written; a partial write leaves the rest of a row for the next call.
         std::size_t done = std::size_t(n);
@@ -242,26 +221,14 @@ void VideoWriter::write(const FrameView& frame) {
 }
 
 void VideoWriter::commit() {
-    if (to_stdout_) {
+    if (out_.is_stdout()) {
         if (std::fflush(f_) != 0) throw Error(ErrorCode::kIo, "write error on standard output");
-        committed_ = true;
-        return;
-    }
-    if (std::fclose(f_) != 0) {
+    } else {
+        const bool closed = std::fclose(f_) == 0;
         f_ = nullptr;
-        if (!direct_) std::remove(tmp_path_.c_str());
-        throw Error(ErrorCode::kIo, "write error on '" + path_ + "'");
+        if (!closed) throw Error(ErrorCode::kIo, "write error on '" + out_.path() + "'");
     }
-    f_ = nullptr;
-    if (direct_) {
-        committed_ = true;
-        return;
-    }
-    if (std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
-        std::remove(tmp_path_.c_str());
-        throw Error(ErrorCode::kIo, "cannot rename output into '" + path_ + "': " + std::strerror(errno));
-    }
-    committed_ = true;
+    out_.commit();
 }
 
 }  // namespace filmgrain

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/frame_buffer.hpp"
+#include "io/output_file.hpp"
 
 namespace filmgrain {
 
@@ -41,17 +42,11 @@ private:
     int frames_ = 0;
 };
 
-// True when `path` names something other than a regular file or directory: a device such as
-// /dev/null, a FIFO or a socket. Output goes straight to those: renaming a finished temporary
-// over them would replace the device or pipe with a plain file (and a reader of the pipe
-// would never see the data), and there is no file to leave half-written.
-bool is_stream_target(const std::string& path);
-
 class VideoWriter {
 public:
     // Writes to a temporary file beside `path`; commit() renames it into place. Without
-    // commit() (an error) the temporary is removed and `path` is never created. "-" writes to
-    // stdout, and a device or pipe (is_stream_target) is written directly.
+    // commit() (an error) the temporary is removed and `path` is never created (OutputFile;
+    // "-" is stdout, and a device or pipe is written directly).
     VideoWriter(const std::string& path, const VideoInfo& info, bool y4m);
     ~VideoWriter();
     void write(const FrameBuffer& frame);
@@ -62,12 +57,9 @@ public:
 
 private:
     std::FILE* f_ = nullptr;
-    bool to_stdout_ = false;
-    bool direct_ = false;  // a device or pipe, written without a temporary
-    std::string path_, tmp_path_;
+    OutputFile out_;
     VideoInfo info_;
     bool y4m_;
-    bool committed_ = false;
     std::vector<iovec> rows_;  // write(FrameView)'s row list, kept so frames do not allocate
 };
 

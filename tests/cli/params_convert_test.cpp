@@ -230,6 +230,8 @@ TEST_F(ParamsConvertCli, OutputIntoAPipeReachesItsReaderAndLeavesAPipe) {
     const std::string table = through_pipe("params convert -q " + p("p.json"), "pipe.tbl");
     EXPECT_EQ(table.size(), read("p.tbl").size());
     EXPECT_TRUE(table == read("p.tbl"));
-    for (const auto& e : fs::directory_iterator(dir))
+    for (const auto& e : fs::directory_iterator(dir)) {
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+        EXPECT_EQ(e.path().filename().string().find(".filmgrain-partial"), std::string::npos) << e.path();
+    }
 }
