@@ -484,16 +484,17 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
 // Above 8 bits the scale of sample i is scale_lut(i) (7.18.3.5: the 8-bit LUT at
 // i >> shift, interpolated towards its next entry by the low bits, shift = bit_depth - 8).
 // ScalingLookup keeps it over the whole bit-depth range (exact by construction): too many
-// entries for byte shuffles, but decoded pictures are locally smooth, and in most pairs of
-// vectors every sample lies within one 16-entry row of that table of the first sample's row
-// (83 % of the 32-sample luma vectors of the 10-bit benchmark stream). Three shuffles then
-// look the pair up. The other pairs take the spec's form: the two 8-bit LUT entries by byte
-// shuffles as at 8 bits (where most vectors again need only three rows) and the
-// interpolation in 16-bit lanes. Either way the two vectors' bytes share one byte vector
-// (even bytes the first, odd bytes the second), so no byte crosses a lane on the way there
-// and back. Where the row test mostly fails (noisy content: more than half the pairs of a
-// chunk), the rest of the row skips it and looks a whole chunk's LUT entries up at once,
-// which schedules better than pair by pair. The results are shifted up to q15.
+// entries for byte shuffles, but decoded pictures are locally smooth. Four vectors whose
+// samples all lie in the three 16-entry rows of that table at and around the first sample's
+// row (74 % of the 64-sample luma groups of the 10-bit benchmark stream) are looked up with
+// three shuffles per pair; the others, where they lie within 16 rows around it, by a chain of 16 shuffles over
+// those rows (StoreByWindow). The rest take the spec's form: the two 8-bit LUT entries by
+// byte shuffles as at 8 bits (where most vectors again need only three rows) and the
+// interpolation in 16-bit lanes. Each way two vectors' bytes share one byte vector
+// (PackBytes), so no byte crosses a lane on the way there and back. Where more than half the
+// pairs of a chunk take the spec's form (noisy content), the rest of the row skips the
+// tests and looks a whole chunk's LUT entries up at once, which schedules better than pair by
+// pair. The results are shifted up to q15.
 class InterpolatedScales {
 public:
     InterpolatedScales(const ScalingLookup& scaling, int bit_depth, int scaling_shift)
@@ -556,8 +557,8 @@ public:
             misses += !LookUpPair(c, in, k + 2 * n, false);
         }
         for (; k + 2 * n <= count; k += 2 * n) misses += !LookUpPair(c, in, k);
-        // Noisy content: where more than half the pairs of a chunk missed the row test, the
-        // rest of the row skips it.
+        // Noisy content: where more than half the pairs of a chunk took the spec's form, the
+        // rest of the row skips the tests.
         by_rows_ = 2 * misses * 2 * n <= k;
 #endif
         for (; k < count; ++k) scale_[k] = int16_t(Scalar(in[k]) << up_shift_);
