@@ -33,8 +33,8 @@ void register_inspect(CLI::App& app);
 void register_decode(CLI::App& app);
 int run_demo();
 
-// Writes a PNG with the clean and the grainy crop side by side (OpenImageIO), if available.
-// Returns false with a reason when the build has no OpenImageIO.
+// Writes a PNG with the clean and the grainy crop side by side (through the image module).
+// Returns false with a reason when it cannot (no OpenImageIO in this build, or a failed write).
 bool write_preview_png(const std::string& path, const FrameBuffer& clean, const FrameBuffer& grainy, std::string* why);
 
 }  // namespace filmgrain::cli

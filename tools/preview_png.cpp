@@ -1,14 +1,12 @@
-// PNG preview of a clean/grainy pair through OpenImageIO: the centre crop of both frames
-// converted to RGB (BT.709, limited range) and enlarged 2x so the grain is visible.
+// PNG preview of a clean/grainy pair (a still through the image module): the centre crop of
+// both frames converted to RGB (BT.709, limited range) and enlarged 2x so the grain is visible.
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "cli_common.hpp"
-
-#ifdef FILMGRAIN_HAVE_OIIO
-#include <OpenImageIO/imageio.h>
-#endif
+#include "filmgrain/error.hpp"
+#include "still_image.hpp"
 
 namespace filmgrain::cli {
 
@@ -26,15 +24,13 @@ double sample01(const FrameBuffer& f, int c, int x, int y) {
 }  // namespace
 
 bool write_preview_png(const std::string& path, const FrameBuffer& clean, const FrameBuffer& grainy, std::string* why) {
-#ifndef FILMGRAIN_HAVE_OIIO
-    (void)path; (void)clean; (void)grainy;
-    if (why) *why = "this build has no OpenImageIO";
-    return false;
-#else
     const int cw = std::min(clean.width(), 256), ch = std::min(clean.height(), 192), zoom = 2;
     const int x0 = (clean.width() - cw) / 2, y0 = (clean.height() - ch) / 2;
     const int gap = 8, W = (2 * cw * zoom) + gap, H = ch * zoom;
-    std::vector<uint8_t> rgb(std::size_t(W) * H * 3, 255);
+    StillImage img;
+    img.channels.assign(3, FloatPlane(W, H, 1.f));
+    img.channel_names = {"R", "G", "B"};
+    img.format = "uint8";
     for (int side = 0; side < 2; side++) {
         const FrameBuffer& f = side ? grainy : clean;
         for (int y = 0; y < ch; y++)
@@ -42,29 +38,23 @@ bool write_preview_png(const std::string& path, const FrameBuffer& clean, const 
                 const double Y = (sample01(f, 0, x0 + x, y0 + y) * 255 - 16) / 219.0;
                 const double U = (sample01(f, 1, x0 + x, y0 + y) * 255 - 128) / 224.0;
                 const double V = (sample01(f, 2, x0 + x, y0 + y) * 255 - 128) / 224.0;
-                const double r = Y + 1.5748 * V, g = Y - 0.1873 * U - 0.4681 * V, b = Y + 1.8556 * U;
-                const uint8_t px[3] = {uint8_t(std::clamp(std::lround(r * 255), 0L, 255L)),
-                                       uint8_t(std::clamp(std::lround(g * 255), 0L, 255L)),
-                                       uint8_t(std::clamp(std::lround(b * 255), 0L, 255L))};
-                for (int dy = 0; dy < zoom; dy++)
-                    for (int dx = 0; dx < zoom; dx++) {
-                        const int ox = side * (cw * zoom + gap) + x * zoom + dx, oy = y * zoom + dy;
-                        std::copy(px, px + 3, &rgb[(std::size_t(oy) * W + ox) * 3]);
-                    }
+                const double rgb[3] = {Y + 1.5748 * V, Y - 0.1873 * U - 0.4681 * V, Y + 1.8556 * U};
+                for (int c = 0; c < 3; c++) {
+                    // 8-bit steps, as the PNG will hold them
+                    const float v = float(std::clamp(std::lround(rgb[c] * 255), 0L, 255L)) / 255.f;
+                    for (int dy = 0; dy < zoom; dy++)
+                        for (int dx = 0; dx < zoom; dx++)
+                            img.channels[c].at(side * (cw * zoom + gap) + x * zoom + dx, y * zoom + dy) = v;
+                }
             }
     }
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        if (why) *why = "OpenImageIO cannot write " + path;
+    try {
+        write_still_image(path, img);
+        return true;
+    } catch (const Error& e) {
+        if (why) *why = e.what();
         return false;
     }
-    OIIO::ImageSpec spec(W, H, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
-        if (why) *why = out->geterror();
-        return false;
-    }
-    return true;
-#endif
 }
 
 }  // namespace filmgrain::cli

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "analysis/plane_image.hpp"
+#include "analysis/png_file.hpp"
 #include "filmgrain/error.hpp"
 #include "io/output_file.hpp"
 
@@ -24,16 +24,6 @@ std::string html_escape(const std::string& s) {
         else o += c;
     }
     return o;
-}
-
-void write_png(const std::string& path, const cv::Mat& img) {
-    bool ok = false;
-    try {
-        ok = cv::imwrite(path, img);
-    } catch (const cv::Exception& e) {
-        throw Error(ErrorCode::kIo, "cannot write '" + path + "': " + e.what());
-    }
-    if (!ok) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
 }
 
 // One panel per plane: observations (grey dots), the fitted curve (blue), the model (red).
@@ -136,9 +126,9 @@ void write_analysis_report(const std::string& html_path, const ReportInput& in) 
     const fs::path dir = html.has_parent_path() ? html.parent_path() : fs::path(".");
     const std::string stem = html.stem().string();
     const std::string scaling = stem + "-scaling.png", spectrum = stem + "-spectrum.png", crop = stem + "-crop.png";
-    write_png((dir / scaling).string(), plot_scaling(in));
-    write_png((dir / spectrum).string(), plot_spectrum(in));
-    write_png((dir / crop).string(), plot_crops(in));
+    write_png_file((dir / scaling).string(), plot_scaling(in));
+    write_png_file((dir / spectrum).string(), plot_spectrum(in));
+    write_png_file((dir / crop).string(), plot_crops(in));
     OutputFile out(html_path);
     {
         std::ofstream f(out.write_path());

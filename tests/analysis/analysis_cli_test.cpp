@@ -79,6 +79,23 @@ TEST(AnalysisCli, FgcOutputsFeedApplyAndReportHasImages) {
     EXPECT_EQ(from_sei.comp[0].intervals.size(), pf.frames[0].fgc->comp[0].intervals.size());
     for (const char* f : {"report.html", "report-scaling.png", "report-spectrum.png", "report-crop.png"})
         EXPECT_GT(fs::file_size(d / "r" / f), 100u) << f;
+    // PNG signature, then IHDR: the scaling plot is 720 wide, 300 high per plane (three here),
+    // 8-bit RGB (colour type 2)
+    {
+        std::ifstream png(d / "r" / "report-scaling.png", std::ios::binary);
+        std::string head(26, '\0');
+        png.read(head.data(), 26);
+        EXPECT_EQ(head.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+        EXPECT_EQ(head.substr(12, 4), "IHDR");
+        auto be32 = [&](int at) {
+            return (uint32_t(uint8_t(head[at])) << 24) | (uint32_t(uint8_t(head[at + 1])) << 16) |
+                   (uint32_t(uint8_t(head[at + 2])) << 8) | uint8_t(head[at + 3]);
+        };
+        EXPECT_EQ(be32(16), 720u);
+        EXPECT_EQ(be32(20), 900u);
+        EXPECT_EQ(int(head[24]), 8);
+        EXPECT_EQ(int(head[25]), 2);
+    }
     std::ifstream html(d / "r" / "report.html");
     const std::string text((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("report-scaling.png"), std::string::npos);

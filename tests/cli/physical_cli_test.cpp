@@ -127,6 +127,31 @@ TEST_F(PhysicalCli, RenderStills) {
     EXPECT_FALSE(fs::exists(dir / "never.png"));
 }
 
+// Stills go through the image module (tools/image_module.hpp), which the tool loads only
+// when a command reads or writes one: without it, still commands fail naming the module and
+// the paths tried, and video commands are unaffected.
+TEST_F(PhysicalCli, StillsWithoutTheImageModuleFailClearlyAndVideoStillWorks) {
+    {
+        std::ofstream f(dir / "in.pgm", std::ios::binary);
+        f << "P5\n16 8\n255\n" << std::string(16 * 8, char(100));
+    }
+    const std::string missing = (dir / "nowhere" / "filmgrain-oiio.so").string();
+    const std::string env = "FILMGRAIN_IMAGE_MODULE='" + missing + "' ";
+    std::string log;
+    EXPECT_EQ(run_command(env + "'" + FILMGRAIN_TOOL_PATH + "' render " + p("in.pgm") + " -o " + p("out.png") + " -q", &log),
+              1)
+        << log;
+    EXPECT_NE(log.find(missing + " does not exist"), std::string::npos) << log;
+    EXPECT_NE(log.find("in.pgm"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+    ASSERT_EQ(run_command(env + "'" + FILMGRAIN_TOOL_PATH + "' render " + p("in.y4m") + " -o " + p("out.y4m") +
+                              " --radius 0.2 --samples 8 -q",
+                          &log),
+              0)
+        << log;
+    EXPECT_TRUE(fs::exists(dir / "out.y4m"));
+}
+
 TEST_F(PhysicalCli, TradeoffWritesTableWithEveryMethod) {
     std::string log;
     ASSERT_EQ(run("tradeoff --skip-benchmark --size 256x128 --boolean-size 32 --samples 8 32 --frames 1 --output " +

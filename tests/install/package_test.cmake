@@ -83,3 +83,18 @@ if(NM)
     endif()
   endforeach()
 endif()
+
+# The installed tool finds its image module (stills through OpenImageIO) where the install
+# put it, relative to itself: a PGM in, a PNG out.
+if(EXISTS ${BUILD_DIR}/filmgrain-oiio.so)
+  if(NOT EXISTS ${libdir}/filmgrain/filmgrain-oiio.so)
+    message(FATAL_ERROR "not installed: ${libdir}/filmgrain/filmgrain-oiio.so")
+  endif()
+  string(REPEAT "d" 128 pixels)
+  file(WRITE ${WORK_DIR}/still.pgm "P5\n16 8\n255\n${pixels}")
+  run(${prefix}/bin/filmgrain render ${WORK_DIR}/still.pgm -o ${WORK_DIR}/still.png --radius 0.3 --samples 8 -q)
+  file(READ ${WORK_DIR}/still.png signature LIMIT 4 HEX)
+  if(NOT signature STREQUAL "89504e47")
+    message(FATAL_ERROR "the installed tool did not write a PNG (${signature})")
+  endif()
+endif()
