@@ -274,14 +274,18 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
             Table* g = band + l * band_stride;
             std::fill(g + zero_from, g + grain_width + 2, Table(0));
             const int y = y_top + l0 + l;
+            // the same row of the next stripe, whose block sums come next (prefetched as this
+            // row is blended)
+            const Pixel* ahead = y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
             if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1)
-                simd::deblock_blend_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
+                simd::deblock_blend_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
             else if constexpr (sizeof(Pixel) == 1)
-                simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock);
+                simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
             else if constexpr (sizeof(Table) == 1)
-                simd::deblock_blend_row_u16_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
+                simd::deblock_blend_row_u16_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth,
+                                               ahead);
             else
-                simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth);
+                simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth, ahead);
         }
     }
 }

@@ -26,16 +26,20 @@ void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shi
 // `grain` is the undeblocked row and is only read (it needs one readable value past
 // `width`, as the reference stripe's padding provides). For u8 the grain must satisfy
 // |g| <= 8191 (8-bit grain is at most 126); for u16 |g| <= 32385 >> (16 - bit_depth), the
-// bound above.
-void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size);
+// bound above. `ahead` (may be null) is a row of at least `width` samples the kernel
+// prefetches as it goes: the synthesis passes the same row of the next stripe. It changes
+// no output.
+void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size,
+                          const uint8_t* ahead = nullptr);
 void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
-                           int bit_depth);
+                           int bit_depth, const uint16_t* ahead = nullptr);
 
 // The same from int8 grain, as the narrow scaled tables hold it (|g| <= 128). The u8 kernel
 // also reads grain[-1] (any value: column 0 is never filtered); both read grain[width].
-void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size);
+void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size,
+                             const uint8_t* ahead = nullptr);
 void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
-                              int bit_depth);
+                              int bit_depth, const uint16_t* ahead = nullptr);
 
 // Rows of one block row of the stripe: for each of `count` blocks, `rows` rows of `block`
 // values (8, 16 or 32) that lie `pitch` apart from blocks[j] + offset, copied to

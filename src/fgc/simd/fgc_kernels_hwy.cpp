@@ -88,7 +88,17 @@ inline int32_t deblocked_scalar(const G* g, int x, int width, int bs) {
     return g[x];
 }
 
-void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size) {
+// The blend kernels touch the same row of the next stripe (`ahead`, or nullptr) as they go:
+// that stripe's block sums are otherwise the first read of a picture the decoder wrote long
+// enough ago to have left the caches (in `filmgrain decode` of a 1080p 8-bit HEVC stream
+// they took 0.22 of 0.77 ms per frame; with the prefetch 0.08 of 0.64).
+template <typename T>
+HWY_INLINE void PrefetchAhead(const T* ahead, int x) {
+    if (ahead) __builtin_prefetch(ahead + x, 0, 2);
+}
+
+void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size,
+                       const uint8_t* ahead) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint8_t, decltype(d16)> d8;
     const int n = int(hn::Lanes(d16));
@@ -112,10 +122,12 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
             const auto c = hn::LoadU(d16, grain + x + 1);
             const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
             blend(x, hn::IfThenElse(edge, f, b));
+            PrefetchAhead(ahead, x);
         }
     }
     for (; x + n <= width - 1; x += n) {
         blend(x, DeblockedGrain(d16, grain, x, phase, last));
+        PrefetchAhead(ahead, x);
         phase = hn::And(hn::Add(phase, step), last);
     }
     for (; x < width; x++)
@@ -130,7 +142,8 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
 // of biased grain is grain ^ 0x7F, so the filter is two AverageRounds between four XORs.
 // Biasing the picture by 128 the other way makes clip(src + g, 0, 255) a signed
 // saturating add.
-void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size) {
+void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size,
+                         const uint8_t* ahead) {
     const hn::ScalableTag<uint8_t> du;
     const hn::RebindToSigned<decltype(du)> di;
     const int n = int(hn::Lanes(du));
@@ -170,9 +183,15 @@ void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, 
     if (n % block_size == 0) {
         // every vector starts at the same phase: one edge mask for the whole row
         const auto edges = edges_at(0);
-        for (; x + n < width; x += n) blend(src + x, grain + x - 1, dst + x, edges);
+        for (; x + n < width; x += n) {
+            blend(src + x, grain + x - 1, dst + x, edges);
+            PrefetchAhead(ahead, x);
+        }
     } else {
-        for (; x + n < width; x += n) blend(src + x, grain + x - 1, dst + x, edges_at(x));
+        for (; x + n < width; x += n) {
+            blend(src + x, grain + x - 1, dst + x, edges_at(x));
+            PrefetchAhead(ahead, x);
+        }
     }
     if (x + n == width) {
         blend(src + x, grain + x - 1, dst + x, filtered_at(x));
@@ -193,7 +212,7 @@ void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, 
 // so a saturating add gives the same result.
 template <typename G>
 void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
-                              int bit_depth) {
+                              int bit_depth, const uint16_t* ahead) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint16_t, decltype(d16)> du16;
     const int n = int(hn::Lanes(d16));
@@ -227,17 +246,22 @@ void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain
     auto phase = hn::And(hn::Iota(d16, 1), last);
     if (n % block_size == 0) {
         const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d16)), hn::Eq(phase, last));
-        for (; x + n <= width - 1; x += n) blend(x, edge);
+        for (; x + n <= width - 1; x += n) {
+            blend(x, edge);
+            PrefetchAhead(ahead, x);
+        }
     }
-    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), last))
+    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), last)) {
         blend(x, hn::Or(hn::Eq(phase, hn::Zero(d16)), hn::Eq(phase, last)));
+        PrefetchAhead(ahead, x);
+    }
     for (; x < width; x++) blend1(x);
 }
 
 template <typename G>
 void DeblockBlendRowU16Of(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
-                            int bit_depth) {
-    if (bit_depth <= 12) return DeblockBlendRowU16Narrow<G>(src, dst, grain, width, block_size, bit_depth);
+                            int bit_depth, const uint16_t* ahead) {
+    if (bit_depth <= 12) return DeblockBlendRowU16Narrow<G>(src, dst, grain, width, block_size, bit_depth, ahead);
     const hn::ScalableTag<int32_t> d32;
     const hn::Rebind<G, decltype(d32)> dg;
     const hn::Rebind<uint16_t, decltype(d32)> du16;
@@ -267,20 +291,25 @@ void DeblockBlendRowU16Of(const uint16_t* src, uint16_t* dst, const G* grain, in
     if (n % block_size == 0) {
         // every vector starts at the same phase: one edge mask for the whole row
         const auto edge = hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask));
-        for (; x + n <= width - 1; x += n) blend(x, edge);
+        for (; x + n <= width - 1; x += n) {
+            blend(x, edge);
+            PrefetchAhead(ahead, x);
+        }
     }
-    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), bs_mask))
+    for (; x + n <= width - 1; x += n, phase = hn::And(hn::Add(phase, step), bs_mask)) {
         blend(x, hn::Or(hn::Eq(phase, hn::Zero(d32)), hn::Eq(phase, bs_mask)));
+        PrefetchAhead(ahead, x);
+    }
     for (; x < width; x++) blend1(x);
 }
 
 void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
-                        int bit_depth) {
-    DeblockBlendRowU16Of<int16_t>(src, dst, grain, width, block_size, bit_depth);
+                        int bit_depth, const uint16_t* ahead) {
+    DeblockBlendRowU16Of<int16_t>(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 void DeblockBlendRowU16I8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
-                          int bit_depth) {
-    DeblockBlendRowU16Of<int8_t>(src, dst, grain, width, block_size, bit_depth);
+                          int bit_depth, const uint16_t* ahead) {
+    DeblockBlendRowU16Of<int8_t>(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 
 // Whole-vector stores instead of one 8-byte move per block row: 8-sample blocks are joined
@@ -395,19 +424,21 @@ HWY_EXPORT(BlockSumsU16);
 void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
     HWY_DYNAMIC_DISPATCH(ScaleTemplateBlocks)(blocks, count, rows, shift, dst_stride);
 }
-void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size) {
-    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8)(src, dst, grain, width, block_size);
+void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size,
+                          const uint8_t* ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8)(src, dst, grain, width, block_size, ahead);
 }
 void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
-                           int bit_depth) {
-    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16)(src, dst, grain, width, block_size, bit_depth);
+                           int bit_depth, const uint16_t* ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16)(src, dst, grain, width, block_size, bit_depth, ahead);
 }
-void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size) {
-    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8I8)(src, dst, grain, width, block_size);
+void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size,
+                             const uint8_t* ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8I8)(src, dst, grain, width, block_size, ahead);
 }
 void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
-                              int bit_depth) {
-    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16I8)(src, dst, grain, width, block_size, bit_depth);
+                              int bit_depth, const uint16_t* ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16I8)(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, int count, int block, int rows,
                            std::ptrdiff_t pitch, int8_t* out, std::ptrdiff_t out_stride) {
