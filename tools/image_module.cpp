@@ -47,7 +47,7 @@ Loaded load() {
             r.why += " " + path + " does not exist;";
             continue;
         }
-        // never unloaded: its table lives as long as the process
+        // kept loaded once its table is in use: the table lives as long as the process
         void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!handle) {
             r.why += " " + std::string(dlerror()) + ";";
@@ -57,6 +57,7 @@ Loaded load() {
         const auto entry = reinterpret_cast<Entry>(dlsym(handle, "filmgrain_image_module"));
         const ImageModule* m = entry ? entry(kImageModuleVersion) : nullptr;
         if (!m) {
+            dlclose(handle);
             r.why += " " + path + " is not this build's module (interface version " +
                      std::to_string(kImageModuleVersion) + ");";
             continue;

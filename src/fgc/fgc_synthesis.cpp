@@ -133,7 +133,8 @@ alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};
 
 template <typename Pixel, int kBlock, typename Table>
 void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,
-                                         const PlaneView& dst, int bit_depth, int by, Scratch& scratch) const {
+                                         const PlaneView& dst, int bit_depth, int by, bool prefetch_next,
+                                         Scratch& scratch) const {
     constexpr int kRandBlock = kBlock == 32 ? 32 : 16;
     constexpr int kSub = kRandBlock / kBlock;  // adaptation blocks per randomization block, each direction
     constexpr int kLog2Area = kBlock == 8 ? 6 : kBlock == 16 ? 8 : 10;
@@ -276,7 +277,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
             const int y = y_top + l0 + l;
             // the same row of the next stripe, whose block sums come next (prefetched as this
             // row is blended)
-            const Pixel* ahead = y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
+            const Pixel* ahead = prefetch_next && y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
             if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1)
                 simd::deblock_blend_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
             else if constexpr (sizeof(Pixel) == 1)
@@ -292,14 +293,15 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
 
 template <typename Pixel>
 void FgcFrameSynthesis::optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src,
-                                            const PlaneView& dst, int bit_depth, int by, Scratch& scratch) const {
+                                            const PlaneView& dst, int bit_depth, int by, bool prefetch_next,
+                                            Scratch& scratch) const {
     const bool narrow = have_scaled_[c] && scaled_[c].narrow();
     auto run = [&](auto block) {
         constexpr int kBlock = decltype(block)::value;
         if (narrow)
-            optimized_stripe<Pixel, kBlock, int8_t>(params, c, src, dst, bit_depth, by, scratch);
+            optimized_stripe<Pixel, kBlock, int8_t>(params, c, src, dst, bit_depth, by, prefetch_next, scratch);
         else
-            optimized_stripe<Pixel, kBlock, int16_t>(params, c, src, dst, bit_depth, by, scratch);
+            optimized_stripe<Pixel, kBlock, int16_t>(params, c, src, dst, bit_depth, by, prefetch_next, scratch);
     };
     if (block_size_ == 8)
         run(std::integral_constant<int, 8>{});
@@ -371,21 +373,32 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
             }
         }
     }
-    pool_->parallel_for(first_task[3], [&](int task, int worker) {
-        int c = 0;
-        while (task >= first_task[c + 1]) c++;
-        const int by = task - first_task[c];
+    // The stripes go to the threads in runs of consecutive ones, because each stripe's blend
+    // prefetches the rows of the stripe below (deblock_blend_row_*), which helps only if the
+    // same thread takes it: handed out one by one, two threads would alternate and fetch each
+    // other's rows. Eight runs per thread keep the threads' shares within a small fraction of
+    // a frame of each other when one of them is held up.
+    const int stripes = first_task[3];
+    const int runs = std::min(stripes, pool_->size() == 1 ? 1 : pool_->size() * 8);
+    pool_->parallel_for(runs, [&](int run, int worker) {
+        const int t0 = int(int64_t(stripes) * run / runs), t1 = int(int64_t(stripes) * (run + 1) / runs);
         Scratch& scratch = scratch_[std::size_t(worker)];
-        const PlaneView &s = src.planes[c], &d = dst.planes[c];
-        if (kernels_ == Kernels::kReference) {
-            if (bps == 1)
-                reference_stripe<uint8_t>(params, c, s, d, src.bit_depth, by, scratch);
-            else
-                reference_stripe<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
-        } else if (bps == 1) {
-            optimized_stripe_of<uint8_t>(params, c, s, d, src.bit_depth, by, scratch);
-        } else {
-            optimized_stripe_of<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
+        for (int task = t0; task < t1; task++) {
+            int c = 0;
+            while (task >= first_task[c + 1]) c++;
+            const int by = task - first_task[c];
+            const bool prefetch_next = task + 1 < t1 && task + 1 < first_task[c + 1];
+            const PlaneView &s = src.planes[c], &d = dst.planes[c];
+            if (kernels_ == Kernels::kReference) {
+                if (bps == 1)
+                    reference_stripe<uint8_t>(params, c, s, d, src.bit_depth, by, scratch);
+                else
+                    reference_stripe<uint16_t>(params, c, s, d, src.bit_depth, by, scratch);
+            } else if (bps == 1) {
+                optimized_stripe_of<uint8_t>(params, c, s, d, src.bit_depth, by, prefetch_next, scratch);
+            } else {
+                optimized_stripe_of<uint16_t>(params, c, s, d, src.bit_depth, by, prefetch_next, scratch);
+            }
         }
     });
 }

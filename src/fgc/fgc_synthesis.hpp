@@ -72,13 +72,14 @@ private:
     template <typename Pixel>
     void reference_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
                           int by, Scratch& scratch) const;
+    // prefetch_next: the same thread takes the stripe below next (its rows are prefetched)
     template <typename Pixel>
     void optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst,
-                             int bit_depth, int by, Scratch& scratch) const;
+                             int bit_depth, int by, bool prefetch_next, Scratch& scratch) const;
     // Table: the element type of the component's scaled templates (int8_t when narrow)
     template <typename Pixel, int kBlock, typename Table>
     void optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
-                          int by, Scratch& scratch) const;
+                          int by, bool prefetch_next, Scratch& scratch) const;
 
     FgcFlavour flavour_;
     int block_size_;
