@@ -164,6 +164,28 @@ TEST_F(PhysicalCli, TradeoffWritesTableWithEveryMethod) {
     for (const char* m : {"Boolean model, N=8", "Boolean model, N=32", "Gaussian approximation", "FGC SEI, rdd5",
                           "FGC SEI, vtm", "FGC SEI, vfgs", "AV1 / AFGS1"})
         EXPECT_NE(md.find(m), std::string::npos) << m;
+#ifdef FILMGRAIN_HAVE_OIIO
+    // the plot, a whole PNG (signature first, IEND chunk last), linked from the table
+    auto whole_png = [](const std::string& b) {
+        return b.size() > 20 && b.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0 && b.compare(b.size() - 8, 4, "IEND") == 0;
+    };
+    {
+        std::ifstream png(dir / "t.png", std::ios::binary);
+        EXPECT_TRUE(whole_png(std::string((std::istreambuf_iterator<char>(png)), {})));
+        EXPECT_NE(md.find("](t.png)"), std::string::npos) << md;
+    }
+    // and into a pipe: written straight into it, the pipe left a pipe
+    int status;
+    bool still_fifo;
+    const std::string piped = read_through_fifo(
+        (dir / "plot.png").string(),
+        "'" + std::string(FILMGRAIN_TOOL_PATH) + "' tradeoff --skip-benchmark --size 256x128 --boolean-size 32 " +
+            "--samples 8 --frames 1 --output " + p("T2.md") + " --plot " + p("plot.png"),
+        &status, &still_fifo, &log);
+    EXPECT_EQ(status, 0) << log;
+    EXPECT_TRUE(still_fifo);
+    EXPECT_TRUE(whole_png(piped)) << piped.size() << " bytes";
+#endif
 }
 
 }  // namespace
