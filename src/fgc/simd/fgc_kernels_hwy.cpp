@@ -91,7 +91,7 @@ inline int32_t deblocked_scalar(const G* g, int x, int width, int bs) {
 // The blend kernels touch the same row of the next stripe (`ahead`, or nullptr) as they go:
 // that stripe's block sums are otherwise the first read of a picture the decoder wrote long
 // enough ago to have left the caches (in `filmgrain decode` of a 1080p 8-bit HEVC stream
-// they took 0.22 of 0.77 ms per frame; with the prefetch 0.08 of 0.64).
+// they took 0.19-0.25 of 0.69-0.82 ms per frame; with the prefetch 0.08-0.09 of 0.61-0.64).
 template <typename T>
 HWY_INLINE void PrefetchAhead(const T* ahead, int x) {
     if (ahead) __builtin_prefetch(ahead + x, 0, 2);
