@@ -14,11 +14,8 @@ namespace filmgrain::cli {
 
 void write_file_atomically(const std::string& path, const std::string& bytes) {
     OutputFile out(path);
-    std::FILE* f = out.is_stdout() ? stdout : std::fopen(out.write_path().c_str(), "wb");
-    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for writing");
-    bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size() && std::fflush(f) == 0;
-    if (f != stdout) ok = std::fclose(f) == 0 && ok;
-    if (!ok) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
+    if (std::fwrite(bytes.data(), 1, bytes.size(), out.stream()) != bytes.size())
+        throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
     out.commit();
 }
 

@@ -11,7 +11,9 @@ struct PlotPoint {
     double error = 0;       // y axis
 };
 
-// Writes a PNG (OpenImageIO). Returns false with a reason when it cannot.
+// Writes the plot (PNG, or another format by the name's extension) through OutputFile; the
+// drawing itself is OpenImageIO's, in the image module (image_module/oiio_stills_and_plot.cpp).
+// Returns false with a reason when it cannot.
 bool write_tradeoff_plot(const std::string& path, const std::vector<PlotPoint>& points, std::string* why);
 
 }  // namespace filmgrain::cli

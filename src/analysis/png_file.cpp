@@ -3,7 +3,6 @@
 #include <png.h>
 
 #include <cstdio>
-#include <memory>
 
 #include <opencv2/imgproc.hpp>
 
@@ -57,12 +56,8 @@ void write_png_file(const std::string& path, const cv::Mat& bgr) {
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
     OutputFile out(path);
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(out.write_path().c_str(), "wb"), std::fclose);
-    if (!file) throw Error(ErrorCode::kIo, "cannot write '" + path + "'");
     PngFailure failure;
-    const bool encoded = encode_png(file.get(), rgb, &failure);
-    const bool flushed = std::fflush(file.get()) == 0 && !std::ferror(file.get());
-    if (std::fclose(file.release()) != 0 || !encoded || !flushed)
+    if (!encode_png(out.stream(), rgb, &failure))
         throw Error(ErrorCode::kIo, "cannot write '" + path + "'" +
                                         (failure.message[0] ? std::string(": ") + failure.message : std::string()));
     out.commit();

@@ -30,10 +30,25 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
 }
 
 OutputFile::~OutputFile() {
+    if (stream_ && stream_ != stdout) std::fclose(stream_);  // before its file is removed
     if (!direct_ && !committed_) std::remove(write_path_.c_str());
 }
 
+std::FILE* OutputFile::stream() {
+    if (stream_) return stream_;
+    stream_ = is_stdout() ? stdout : std::fopen(write_path_.c_str(), "wb");
+    if (!stream_)
+        throw Error(ErrorCode::kIo, "cannot open '" + path_ + "' for writing: " + std::strerror(errno));
+    return stream_;
+}
+
 void OutputFile::commit() {
+    if (stream_) {
+        bool ok = std::fflush(stream_) == 0 && !std::ferror(stream_);
+        if (stream_ != stdout) ok = std::fclose(stream_) == 0 && ok;
+        stream_ = nullptr;
+        if (!ok) throw Error(ErrorCode::kIo, "write error on '" + path_ + "'");  // the destructor removes it
+    }
     if (!direct_ && std::rename(write_path_.c_str(), path_.c_str()) != 0) {
         const int err = errno;
         std::remove(write_path_.c_str());

@@ -2,6 +2,7 @@
 // nothing at the path), shared by every writer of the project: frames, parameter files and
 // images.
 #pragma once
+#include <cstdio>
 #include <string>
 
 namespace filmgrain {
@@ -26,12 +27,18 @@ public:
     const std::string& path() const { return path_; }
     const std::string& write_path() const { return write_path_; }
     bool is_stdout() const { return path_ == "-"; }
+    // A stdio stream on write_path() (standard output for "-"), opened on the first call, for
+    // writers that do not open write_path() themselves. Throws filmgrain::Error naming the
+    // path when it cannot be opened.
+    std::FILE* stream();
     // The written file into place (throws filmgrain::Error naming the path). Once the writing
-    // is finished and closed.
+    // is finished; a stream() is flushed and closed here first, and a failed write through it
+    // (an error flag, a failed flush or close) fails the commit.
     void commit();
 
 private:
     std::string path_, write_path_;
+    std::FILE* stream_ = nullptr;
     bool direct_ = false, committed_ = false;
 };
 

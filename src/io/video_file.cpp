@@ -151,8 +151,7 @@ bool VideoReader::read(FrameBuffer& frame) {
 
 VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4m)
     : out_(path), info_(info), y4m_(y4m) {
-    f_ = out_.is_stdout() ? stdout : std::fopen(out_.write_path().c_str(), "wb");
-    if (!f_) throw Error(ErrorCode::kIo, "cannot create output '" + path + "': " + std::strerror(errno));
+    f_ = out_.stream();
     if (y4m_) {
         std::string hdr = "YUV4MPEG2 W" + std::to_string(info.width) + " H" + std::to_string(info.height) + " F" +
                           std::to_string(info.fps_num) + ":" + std::to_string(info.fps_den) +
@@ -160,10 +159,6 @@ VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4
                           y4m_colorspace_tag(info.format) + "\n";
         std::fwrite(hdr.data(), 1, hdr.size(), f_);
     }
-}
-
-VideoWriter::~VideoWriter() {
-    if (f_ && f_ != stdout) std::fclose(f_);  // before out_ removes an uncommitted temporary
 }
 
 void VideoWriter::write(const FrameBuffer& frame) {
@@ -221,13 +216,7 @@ void VideoWriter::write(const FrameView& frame) {
 }
 
 void VideoWriter::commit() {
-    if (out_.is_stdout()) {
-        if (std::fflush(f_) != 0) throw Error(ErrorCode::kIo, "write error on standard output");
-    } else {
-        const bool closed = std::fclose(f_) == 0;
-        f_ = nullptr;
-        if (!closed) throw Error(ErrorCode::kIo, "write error on '" + out_.path() + "'");
-    }
+    f_ = nullptr;
     out_.commit();
 }
 

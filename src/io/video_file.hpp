@@ -48,7 +48,6 @@ public:
     // commit() (an error) the temporary is removed and `path` is never created (OutputFile;
     // "-" is stdout, and a device or pipe is written directly).
     VideoWriter(const std::string& path, const VideoInfo& info, bool y4m);
-    ~VideoWriter();
     void write(const FrameBuffer& frame);
     // The same bytes from a picture with any strides (e.g. a decoder's own), written row
     // by row without copying it first.
@@ -56,8 +55,8 @@ public:
     void commit();
 
 private:
-    std::FILE* f_ = nullptr;
     OutputFile out_;
+    std::FILE* f_ = nullptr;  // out_.stream()
     VideoInfo info_;
     bool y4m_;
     std::vector<iovec> rows_;  // write(FrameView)'s row list, kept so frames do not allocate

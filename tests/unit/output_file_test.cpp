@@ -69,4 +69,37 @@ TEST(OutputFile, StdoutPipesAndDevicesAreWrittenDirectly) {
     fs::remove_all(dir);
 }
 
+// stream(): the writers that write through stdio get the stream from OutputFile, and commit()
+// is where a failed write through it shows (a full device here), leaving nothing behind.
+TEST(OutputFile, StreamIsFlushedClosedAndCheckedByCommit) {
+    const fs::path dir = fresh_dir("stream");
+    const fs::path target = dir / "params.json";
+    {
+        OutputFile out(target.string());
+        std::FILE* f = out.stream();
+        EXPECT_EQ(out.stream(), f);  // opened once
+        std::fputs("{}\n", f);
+        out.commit();
+    }
+    ASSERT_TRUE(fs::exists(target));
+    EXPECT_EQ(fs::file_size(target), 3u);
+    {
+        OutputFile out((dir / "half.json").string());
+        std::fputs("{", out.stream());
+    }  // destroyed unflushed and uncommitted: closed, then removed
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    if (fs::exists("/dev/full")) {
+        OutputFile out("/dev/full");
+        std::fputs("more than a full device takes", out.stream());
+        try {
+            out.commit();
+            ADD_FAILURE() << "a write to /dev/full committed";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_THROW(OutputFile((dir / "no-such-dir" / "x.json").string()).stream(), Error);
+    fs::remove_all(dir);
+}
+
 }  // namespace

@@ -1,5 +1,6 @@
-// filmgrain-oiio.so: the tool's stills and plots through OpenImageIO (see image_module.hpp
-// for why this is a module of its own). Nothing here throws across the module boundary.
+// filmgrain-oiio.so: the tool's stills (read and written) and the tradeoff plot (drawn and
+// written) through OpenImageIO; image_module.hpp says why this is a module of its own.
+// Nothing here throws across the module boundary.
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
