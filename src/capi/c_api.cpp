@@ -7,6 +7,7 @@
 #include <new>
 #include <string>
 
+#include "core/thread_pool.hpp"
 #include "filmgrain/filmgrain.hpp"
 
 struct fg_context {
@@ -80,7 +81,8 @@ filmgrain::ContextOptions to_options(const fg_options& o) {
         invalid(filmgrain::out_of_range_message("options.persistence", o.persistence, 0, 1));
     if (o.passthrough_invalid != 0 && o.passthrough_invalid != 1)
         invalid(filmgrain::out_of_range_message("options.passthrough_invalid", o.passthrough_invalid, 0, 1));
-    if (o.threads < 0 || o.threads > 256) invalid(filmgrain::out_of_range_message("options.threads", o.threads, 0, 256));
+    if (o.threads < 0 || o.threads > filmgrain::kMaxThreads)
+        invalid(filmgrain::out_of_range_message("options.threads", o.threads, 0, filmgrain::kMaxThreads));
     if (o.coded_width < 0) invalid(filmgrain::out_of_range_message("options.coded_width", o.coded_width, 0, INT32_MAX));
     if (o.coded_height < 0)
         invalid(filmgrain::out_of_range_message("options.coded_height", o.coded_height, 0, INT32_MAX));

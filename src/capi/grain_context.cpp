@@ -10,6 +10,7 @@
 #include "av1/av1_synthesis.hpp"
 #include "capi/av1_reference_slots.hpp"
 #include "capi/pending_sei_queue.hpp"
+#include "core/thread_pool.hpp"
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "filmgrain/vfgs.hpp"
@@ -21,10 +22,6 @@
 namespace filmgrain {
 
 namespace {
-
-// A stripe is 32 luma rows (AV1) or one block row (FGC): even an 8K picture has fewer
-// stripes than this, so more workers could never all be busy.
-constexpr int kMaxThreads = 256;
 
 void check_options(const ContextOptions& o) {
     const int flavour = static_cast<int>(o.flavour), persistence = static_cast<int>(o.persistence);

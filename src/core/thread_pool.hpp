@@ -13,6 +13,12 @@
 
 namespace filmgrain {
 
+// The one limit on worker threads for every entry point (C API, C++ API, every --threads
+// of the tool): 0..kMaxThreads, 0 = every hardware thread. A stripe is 32 luma rows (AV1)
+// or one block row (FGC): even an 8K picture has fewer stripes than this, so more workers
+// could never all be busy.
+inline constexpr int kMaxThreads = 256;
+
 // 0 means every hardware thread; negative counts are treated as 1.
 int resolve_thread_count(int requested);
 
