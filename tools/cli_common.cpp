@@ -1,26 +1,21 @@
 #include "cli_common.hpp"
 
 #include "filmgrain/error.hpp"
+#include "option_parsing.hpp"
 
 namespace filmgrain::cli {
 
 VideoInfo RawVideoOptions::to_info() const {
     VideoInfo info;
     if (!size.empty()) {
-        int w = 0, h = 0;
-        char x = 0;
-        if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || (x != 'x' && x != 'X') || w <= 0 || h <= 0 ||
-            w > 65536 || h > 65536)
-            throw Error(ErrorCode::kInvalidArgument, "--size '" + size + "' is not WxH with 1..65536 in each dimension");
-        info.width = w;
-        info.height = h;
+        const PictureSize s = parse_picture_size(size, "--size");
+        info.width = s.width;
+        info.height = s.height;
     }
     info.format = parse_pix_fmt(pix_fmt);
-    int n = 0, d = 1;
-    if (std::sscanf(fps.c_str(), "%d/%d", &n, &d) < 1 || n <= 0 || d <= 0)
-        throw Error(ErrorCode::kInvalidArgument, "--fps '" + fps + "' is not N or N/D with positive integers");
-    info.fps_num = n;
-    info.fps_den = d;
+    const FrameRate r = parse_frame_rate(fps, "--fps");
+    info.fps_num = r.num;
+    info.fps_den = r.den;
     return info;
 }
 

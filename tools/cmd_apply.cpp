@@ -7,7 +7,9 @@
 
 #include "av1/av1_synthesis.hpp"
 #include "cli_common.hpp"
+#include "core/thread_pool.hpp"
 #include "frame_pipeline.hpp"
+#include "option_parsing.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "metadata/afgs1.hpp"
@@ -17,6 +19,7 @@
 #include "filmgrain/error.hpp"
 #include "io/xz_file.hpp"
 #include "metadata/fgc_sei.hpp"
+#include "metadata/json_access.hpp"
 #include "metadata/params_file.hpp"
 
 namespace filmgrain::cli {
@@ -74,27 +77,21 @@ private:
 
 class SeiFileSource : public FgcSource {
 public:
-    SeiFileSource(std::vector<std::string> files, FgcCodec codec) : files_(std::move(files)), codec_(codec) {
-        for (const auto& f : files_)
-            if (f.find('%') == std::string::npos) fixed_.push_back(parse_fgc_sei_payload(read_whole_file(f), codec_));
-    }
+    SeiFileSource(std::vector<std::string> files, FgcCodec codec) : files_(std::move(files)), codec_(codec) {}
     std::optional<FgcParams> sei_for(int k, FgcPictureIds& ids) override {
         ids = FgcPictureIds{k, 0};
-        if (files_.size() == 1 && files_[0].find('%') != std::string::npos) {
-            char name[4096];
-            std::snprintf(name, sizeof name, files_[0].c_str(), k);
-            if (!std::filesystem::exists(name)) return std::nullopt;
-            return parse_fgc_sei_payload(read_whole_file(name), codec_);
+        const auto bytes = files_.for_picture(k);
+        if (!bytes) return std::nullopt;
+        try {
+            return parse_fgc_sei_payload(*bytes, codec_);
+        } catch (const Error& e) {
+            throw Error(e.code(), "'" + files_.name_for(k) + "': " + e.what());
         }
-        if (fixed_.size() == 1) return fixed_[0];  // one payload: every picture
-        if (std::size_t(k) < fixed_.size()) return fixed_[k];
-        return std::nullopt;
     }
 
 private:
-    std::vector<std::string> files_;
+    PayloadFiles files_;
     FgcCodec codec_;
-    std::vector<FgcParams> fixed_;
 };
 
 bool ends_with(const std::string& s, const char* suffix) {
@@ -136,14 +133,7 @@ int run_av1(const ApplyOptions& o) {
     if (ends_with(o.params, ".tbl")) {
         table = read_aom_grain_table(o.params);
     } else {
-        const std::vector<uint8_t> bytes = read_whole_file(o.params);
-        nlohmann::json j;
-        try {
-            j = nlohmann::json::parse(bytes.begin(), bytes.end());
-        } catch (const nlohmann::json::parse_error& e) {
-            throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' is not valid JSON: " + e.what());
-        }
-        frames = av1_frame_params_from_json(j);
+        frames = av1_frame_params_from_json(read_json_file(o.params));
         if (frames.empty()) throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' has no AV1 frame");
     }
     const bool single = frames.size() == 1;
@@ -283,11 +273,9 @@ int run_apply(const ApplyOptions& o) {
     fo.block_size = o.block_size;
     fo.single_line_blocks = o.single_line_blocks;
     if (!o.coded_size.empty()) {
-        RawVideoOptions cs;
-        cs.size = o.coded_size;
-        VideoInfo ci = cs.to_info();
-        fo.coded_width = ci.width;
-        fo.coded_height = ci.height;
+        const PictureSize cs = parse_picture_size(o.coded_size, "--coded-size");
+        fo.coded_width = cs.width;
+        fo.coded_height = cs.height;
     }
     fo.passthrough_invalid = o.on_invalid == "passthrough";
     fo.threads = o.threads;
@@ -341,7 +329,7 @@ void register_apply(CLI::App& app) {
                     "(default: the picture size rounded up to a multiple of 16)");
     sub->add_option("--threads", o->threads,
                     "synthesis threads per frame, rdd5/vtm/AV1 (0: all cores; the output is the same for any count)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, kMaxThreads));
     sub->add_option("--seed", o->seed, "vfgs: the reference's -r seed (absent: its default state 0xDEADBEEF)");
     sub->add_option("--gain", o->gain, "vfgs: the reference's --gain in percent")->capture_default_str();
     sub->add_option("--output-pix-fmt", o->output_pix_fmt, "vfgs: output format, e.g. yuv420p for 8-bit output of 10-bit input");
@@ -350,7 +338,8 @@ void register_apply(CLI::App& app) {
                   "intervals near their boundary (compiled out of the reference: not bit-exact with it)");
     sub->add_option("--matrix-coefficients", o->matrix_coefficients,
                     "AV1: the stream's matrix_coefficients (0 = identity changes the chroma clip); default from the "
-                    "parameter file, else 2");
+                    "parameter file, else 2")
+        ->check(CLI::Range(0, 255));
     sub->add_option("--clip-to-restricted-range", o->clip_to_restricted_range,
                     "AV1: override clip_to_restricted_range (0/1); libaom grain tables cannot carry it")
         ->check(CLI::Range(0, 1));

@@ -8,6 +8,13 @@
 // (SMPTE RDD 5). It becomes the picture's POC with idr_pic_id 0, which gives rdd5 exactly
 // the seed FFmpeg computed; vtm seeds from the POC alone, so for H.264 streams with a
 // non-zero idr_pic_id the vtm seed includes FFmpeg's idr_pic_id term. vfgs never reseeds.
+//
+// Damage: as ffmpeg and dav1d, decoding goes on past what the demuxer cannot read or the
+// decoder refuses. Each damaged unit is a warning naming it (packet index, pts, byte; or
+// the picture), the picture it would have given is not output (nothing else is: the grain
+// parameters travel with each picture), and a summary ends the run. The exit status is 0
+// unless --strict, which exits kStrictDamageExit after writing the same complete output.
+// Decoding to no picture at all is an error (no output file).
 #include <unistd.h>
 
 #include <chrono>
@@ -15,6 +22,7 @@
 #include <memory>
 
 #include "cli_common.hpp"
+#include "core/thread_pool.hpp"
 #include "filmgrain/error.hpp"
 
 #ifdef FILMGRAIN_HAVE_LIBAV
@@ -31,8 +39,13 @@ struct DecodeOptions {
     std::string input, output, format, flavour = "rdd5";
     bool quiet = false;
     bool no_grain = false;
+    bool strict = false;
     int threads = 0;
 };
+
+// --strict and damaged units: the output is complete, the status tells the damage apart from
+// a failure (1, 2: nothing written).
+constexpr int kStrictDamageExit = 3;
 
 #ifdef FILMGRAIN_HAVE_LIBAV
 
@@ -50,6 +63,13 @@ public:
         if (!enabled_) return;
         print(n, Clock::now());
         std::fputc('\n', stderr);
+        line_open_ = false;
+    }
+    // Ends the progress line so that a message can be printed on a line of its own.
+    void break_line() {
+        if (!line_open_) return;
+        std::fputc('\n', stderr);
+        line_open_ = false;
     }
 
 private:
@@ -63,8 +83,9 @@ private:
         else
             std::fprintf(stderr, "\rfilmgrain: frame %lld, %.1f fps   ", (long long)n, fps);
         std::fflush(stderr);
+        line_open_ = true;
     }
-    bool enabled_;
+    bool enabled_, line_open_ = false;
     int64_t total_;
     Clock::time_point start_, last_;
 };
@@ -89,8 +110,14 @@ int run_decode(const DecodeOptions& o) {
     std::unique_ptr<VideoWriter> writer;
     VideoInfo info;
     libav::DecodedFrame frame;
-    int64_t n = 0, with_grain = 0;
+    int64_t n = 0, with_grain = 0, skipped_frames = 0;
     Progress progress(!o.quiet && o.output != "-" && isatty(STDERR_FILENO), d.frames_estimate);
+    const auto warn = [&progress](const std::string& text) {
+        progress.break_line();
+        std::fprintf(stderr, "filmgrain: warning: %s\n", text.c_str());
+    };
+    // damage is reported even with -q: it is data lost, not progress
+    decoder.on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
     // Pictures are not copied out of the decoder: the synthesis writes its output frame
     // straight from the decoder's picture (as dav1d does), and pictures without grain are
     // written from the decoder's picture itself.
@@ -106,10 +133,16 @@ int run_decode(const DecodeOptions& o) {
         } else if (frame.picture.width() != info.width || frame.picture.height() != info.height ||
                    frame.picture.format().chroma != info.format.chroma ||
                    frame.picture.format().bit_depth != info.format.bit_depth) {
-            throw Error(ErrorCode::kUnsupported, "frame " + std::to_string(n) + " changes the picture size or format (" +
-                                                     std::to_string(frame.picture.width()) + "x" +
-                                                     std::to_string(frame.picture.height()) + "), which " +
-                                                     (y4m ? "Y4M" : "a raw YUV file") + " cannot hold");
+            // a damaged header, or a stream that really changes size: Y4M and raw YUV hold one
+            // size and format, so the picture is left out like one the decoder refused
+            warn("frame " + std::to_string(frame.index) +
+                 (frame.pts ? " (pts " + std::to_string(*frame.pts) + ")" : std::string()) + ": " +
+                 std::to_string(frame.picture.width()) + "x" + std::to_string(frame.picture.height()) + " " +
+                 pix_fmt_name(frame.picture.format()) + ", but the output holds " + std::to_string(info.width) +
+                 "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format) + " (" +
+                 (y4m ? "Y4M" : "raw YUV") + " has one size and format); skipped");
+            skipped_frames++;
+            continue;
         }
         const FrameView src = frame.decoded, v = frame.picture.view();
         if (o.no_grain || (!frame.av1 && !frame.fgc)) {
@@ -140,13 +173,24 @@ int run_decode(const DecodeOptions& o) {
         n++;
         progress.frame_done(n);
     }
-    if (n == 0) throw Error(ErrorCode::kIo, "'" + o.input + "' decoded to no frame");
+    const int64_t damaged = decoder.damaged_units() + skipped_frames;
+    if (n == 0)
+        throw Error(ErrorCode::kIo, "'" + o.input + "' decoded to no frame" +
+                                        (damaged ? " (" + std::to_string(damaged) + " damaged unit(s) skipped)" : ""));
     writer->commit();
     progress.finish(n);
     if (!o.quiet && o.output != "-")
         std::fprintf(stderr, "filmgrain: %lld frame(s) (%s via %s, %lld with film grain) written to %s\n", (long long)n,
                      d.codec_name.c_str(), d.decoder_name.c_str(), (long long)with_grain, o.output.c_str());
-    return 0;
+    if (damaged == 0) return 0;
+    std::fprintf(stderr, "filmgrain: warning: %lld damaged unit(s) in '%s' skipped or concealed; %lld frame(s) written\n",
+                 (long long)damaged, o.input.c_str(), (long long)n);
+    if (!o.strict) return 0;
+    std::fprintf(stderr,
+                 "filmgrain: error: --strict: %lld damaged unit(s); the output is complete (%lld frame(s)) but the "
+                 "exit status is %d\n",
+                 (long long)damaged, (long long)n, kStrictDamageExit);
+    return kStrictDamageExit;
 }
 
 #else
@@ -174,8 +218,11 @@ void register_decode(CLI::App& app) {
     sub->add_option("--threads", o->threads,
                     "threads of the decoder and of grain synthesis per frame (0: all cores; the output is the same "
                     "for any count)")
-        ->check(CLI::NonNegativeNumber);
-    sub->add_flag("--quiet,-q", o->quiet, "no progress or messages on stderr except errors");
+        ->check(CLI::Range(0, filmgrain::kMaxThreads));
+    sub->add_flag("--strict", o->strict,
+                  "exit with status 3 when the input had damaged units (the output is still written complete); "
+                  "without it damage is only warned about");
+    sub->add_flag("--quiet,-q", o->quiet, "no progress or messages on stderr except errors and damaged units");
     sub->callback([o]() {
         if (int rc = run_decode(*o)) throw CLI::RuntimeError(rc);
     });

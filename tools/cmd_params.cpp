@@ -17,6 +17,7 @@
 #include "metadata/aom_grain_table.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "metadata/fgc_sei.hpp"
+#include "metadata/json_access.hpp"
 #include "metadata/params_file.hpp"
 #include "payload_files.hpp"
 
@@ -59,18 +60,34 @@ Form form_from_name(const std::string& name, bool sei_codec_given) {
     return Form::kAfgs1;
 }
 
+// The first bytes of a file (a form is told by its first non-blank characters; the file
+// may be large or endless, so no more is read).
+std::string file_head(const std::string& name) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(name.c_str(), "rb"), &std::fclose);
+    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + name + "' for reading");
+    char buf[256];
+    return std::string(buf, std::fread(buf, 1, sizeof buf, f.get()));
+}
+
 Form detect_input(const ConvertOptions& o, bool sei_codec_given) {
     if (!o.from.empty()) return parse_form(o.from, "--from");
     const std::string& name = o.inputs[0];
-    if (name.find('%') == std::string::npos) {
-        const std::vector<uint8_t> head = read_whole_file(name);
+    if (!FilePattern::parse(name)) {
+        const std::string head = file_head(name);
         std::size_t i = 0;
-        while (i < head.size() && std::isspace(head[i])) ++i;
-        if (head.size() - i >= 8 && std::string(head.begin() + long(i), head.begin() + long(i) + 8) == "filmgrn1")
-            return Form::kTable;
+        while (i < head.size() && std::isspace((unsigned char)head[i])) ++i;
+        if (head.compare(i, 8, "filmgrn1") == 0) return Form::kTable;
         if (i < head.size() && head[i] == '{') return Form::kJson;
     }
-    return form_from_name(name, sei_codec_given);
+    // Binary payloads carry no signature of their own: take them only under a name that
+    // says what they are, so that a picture or a stream is not read as a payload.
+    if (ends_with(name, ".json") || ends_with(name, ".tbl") || ends_with(name, ".sei") || ends_with(name, ".fgc.bin") ||
+        ends_with(name, ".bin") || ends_with(name, ".afgs1") || ends_with(name, ".t35") || sei_codec_given)
+        return form_from_name(name, sei_codec_given);
+    throw Error(ErrorCode::kInvalidArgument,
+                "cannot tell which parameter form '" + name +
+                    "' holds: it is neither JSON nor a libaom grain table, and its name does not end in .sei / "
+                    ".fgc.bin (FGC SEI payload) or .bin / .afgs1 / .t35 (AFGS1 payload); say --from json|tbl|afgs1|sei");
 }
 
 class Notes {
@@ -278,30 +295,21 @@ std::vector<std::vector<uint8_t>> afgs1_from_frames(const std::vector<Av1FramePa
 void write_payloads(const std::vector<std::vector<uint8_t>>& payloads, const std::string& output, Notes& notes) {
     bool all_same = true;
     for (const auto& p : payloads) all_same = all_same && p == payloads[0];
-    if (payloads.size() == 1 || (all_same && output.find('%') == std::string::npos)) {
+    const auto pattern = FilePattern::parse(output);
+    if (!pattern) {
+        if (!all_same)
+            notes.add("frames 1.." + std::to_string(payloads.size() - 1) +
+                      " (one payload file per picture needs an output pattern such as out%d.bin)");
         write_bytes(output, payloads[0]);
         return;
     }
-    if (output.find('%') == std::string::npos) {
-        notes.add("frames 1.." + std::to_string(payloads.size() - 1) +
-                  " (one payload file per picture needs an output pattern such as out%d.bin)");
-        write_bytes(output, payloads[0]);
-        return;
-    }
-    for (std::size_t k = 0; k < payloads.size(); ++k) write_bytes(format_pattern(output, int(k)), payloads[k]);
+    for (std::size_t k = 0; k < payloads.size(); ++k) write_bytes(pattern->name_for(int(k)), payloads[k]);
 }
 
 std::vector<Av1FrameParams> read_av1(Form from, const ConvertOptions& o, const VideoInfo& info, Notes& notes) {
     if (from == Form::kTable) return frames_from_table(read_aom_grain_table(o.inputs[0]), o, info, notes);
     if (from == Form::kAfgs1) return frames_from_afgs1(PayloadFiles(o.inputs), o, notes);
-    const std::vector<uint8_t> bytes = read_whole_file(o.inputs[0]);
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(bytes.begin(), bytes.end());
-    } catch (const nlohmann::json::parse_error& e) {
-        throw Error(ErrorCode::kInvalidParams, "'" + o.inputs[0] + "' is not valid JSON: " + e.what());
-    }
-    auto frames = av1_frame_params_from_json(j);
+    auto frames = av1_frame_params_from_json(read_json_file(o.inputs[0]));
     if (frames.empty()) throw Error(ErrorCode::kInvalidParams, "'" + o.inputs[0] + "' holds no AV1 parameters");
     return frames;
 }

@@ -4,7 +4,9 @@
 #include <optional>
 
 #include "cli_common.hpp"
+#include "option_parsing.hpp"
 #include "filmgrain/error.hpp"
+#include "core/thread_pool.hpp"
 #include "physical/boolean_model.hpp"
 #include "physical/cell_random.hpp"
 #include "still_image.hpp"
@@ -27,10 +29,11 @@ struct RenderOptions {
 physical::OutputRegion parse_roi(const std::string& s) {
     physical::OutputRegion r;
     if (s.empty()) return r;
-    char c1 = 0, c2 = 0, c3 = 0;
-    if (std::sscanf(s.c_str(), "%d%c%d%c%d%c%d", &r.x, &c1, &r.y, &c2, &r.w, &c3, &r.h) != 7 || c1 != ',' ||
-        c2 != ',' || c3 != ',' || r.x < 0 || r.y < 0 || r.w <= 0 || r.h <= 0)
-        throw Error(ErrorCode::kInvalidArgument, "--roi '" + s + "' is not x,y,w,h with x, y >= 0 and w, h >= 1");
+    const Region g = parse_region(s, "--roi");
+    r.x = g.x;
+    r.y = g.y;
+    r.w = g.w;
+    r.h = g.h;
     return r;
 }
 
@@ -52,7 +55,7 @@ struct Totals {
 physical::OutputRegion checked_region(const physical::OutputRegion& roi, int w, int h, double zoom) {
     const int fw = physical::zoomed_size(w, zoom), fh = physical::zoomed_size(h, zoom);
     if (roi.w == 0) return {0, 0, fw, fh};
-    if (roi.x + roi.w > fw || roi.y + roi.h > fh)
+    if (int64_t(roi.x) + roi.w > fw || int64_t(roi.y) + roi.h > fh)
         throw Error(ErrorCode::kInvalidArgument, "--roi " + std::to_string(roi.x) + "," + std::to_string(roi.y) + "," +
                                                      std::to_string(roi.w) + "," + std::to_string(roi.h) +
                                                      " is not inside the " + std::to_string(fw) + "x" +
@@ -144,7 +147,9 @@ void register_render(CLI::App& app) {
                               "instead of a fixed N: stop each pixel when its standard error reaches this (0..0.5)");
     n->excludes(t);
     sub->add_option("--roi", o->roi, "render only x,y,w,h (output pixels)");
-    sub->add_option("--threads", o->threads, "worker threads (output is the same for any count)")->capture_default_str();
+    sub->add_option("--threads", o->threads, "worker threads (output is the same for any count)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, kMaxThreads));
     sub->add_option("--seed", o->seed, "grain seed")->capture_default_str();
     sub->add_option("--algorithm", o->algorithm, "auto, pixel-wise or grain-wise (same output; speed only)")
         ->capture_default_str();

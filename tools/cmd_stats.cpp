@@ -94,8 +94,12 @@ void register_stats(CLI::App& app) {
     sub->add_option("--channel", o->channel, "still: channel; video: plane")->capture_default_str();
     sub->add_option("--bins", o->bins, "intensity bins")->capture_default_str()->check(CLI::Range(1, 4096));
     sub->add_option("--spectrum-block", o->spectrum_block, "Welch block size")->capture_default_str()->check(CLI::Range(4, 256));
-    sub->add_option("--blocks", o->blocks, "block sizes for the boundary variance")->capture_default_str();
-    sub->add_option("--periods", o->periods, "template periods to test for repetition")->capture_default_str();
+    sub->add_option("--blocks", o->blocks, "block sizes for the boundary variance (2..4096)")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 4096));
+    sub->add_option("--periods", o->periods, "template periods to test for repetition (1..65536)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 65536));
     o->raw.add_to(sub);
     sub->callback([o]() {
         nlohmann::json j;

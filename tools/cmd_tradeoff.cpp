@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "core/thread_pool.hpp"
 #include "grain_outputs.hpp"
 #include "filmgrain/error.hpp"
 #include "physical/boolean_covariance.hpp"
@@ -155,7 +156,7 @@ void register_tradeoff(CLI::App& app) {
     sub->add_option("--boolean-size", o->boolean_size, "content side for the Boolean model runs")->capture_default_str()->check(CLI::Range(16, 4096));
     sub->add_option("--samples", o->samples, "Boolean-model N values")->capture_default_str();
     sub->add_option("--frames", o->frames, "frames timed per fast method")->capture_default_str()->check(CLI::Range(1, 100));
-    sub->add_option("--threads", o->threads, "threads for the methods that use them")->capture_default_str()->check(CLI::Range(1, 256));
+    sub->add_option("--threads", o->threads, "threads for the methods that use them")->capture_default_str()->check(CLI::Range(1, kMaxThreads));
     sub->add_option("--radius", o->radius, "target grain radius (input pixels)")->capture_default_str();
     sub->add_flag("--skip-benchmark", o->skip_benchmark, "skip the 1024x1024 N=800 Boolean benchmark");
     sub->callback([o]() {

@@ -2,7 +2,9 @@
 // thread synthesizes frame k and another writes frame k-1. Frames travel in a fixed ring
 // of slots, so memory stays constant whatever the stream length (kSlots input and output
 // frames), and frames are synthesized in stream order on the calling thread (the models
-// keep per-stream state such as SEI persistence).
+// keep per-stream state such as SEI persistence). When a stage fails, the others stop at
+// once: the queues are aborted and the reader's wait for input is cancelled
+// (ReadCancellation), so an error does not wait for a slow pipe to deliver its next frame.
 #pragma once
 #include <condition_variable>
 #include <deque>
@@ -12,6 +14,7 @@
 #include <thread>
 
 #include "core/frame_buffer.hpp"
+#include "io/input_file.hpp"
 
 namespace filmgrain::cli {
 
@@ -62,7 +65,8 @@ struct FrameSlot {
 
 // read(FrameBuffer&) -> bool (false at the end), synthesize(int k, FrameSlot&),
 // write(const FrameBuffer&). Returns the number of frames; rethrows the first error of
-// any stage after every thread has stopped.
+// any stage after every thread has stopped. read() runs on a thread of its own under a
+// ReadCancellation::Scope: reads through InputFile (VideoReader) are cancelled on failure.
 template <typename Read, typename Synthesize, typename Write>
 int run_frame_pipeline(Read&& read, Synthesize&& synthesize, Write&& write) {
     constexpr int kSlots = 3;
@@ -71,6 +75,7 @@ int run_frame_pipeline(Read&& read, Synthesize&& synthesize, Write&& write) {
     for (int i = 0; i < kSlots; i++) free_slots.push(i);
     std::mutex error_mutex;
     std::exception_ptr error;
+    ReadCancellation cancel_reads;
     auto fail = [&](std::exception_ptr e) {
         {
             std::lock_guard<std::mutex> l(error_mutex);
@@ -79,8 +84,10 @@ int run_frame_pipeline(Read&& read, Synthesize&& synthesize, Write&& write) {
         free_slots.abort();
         read_slots.abort();
         done_slots.abort();
+        cancel_reads.cancel();
     };
     std::thread reader([&] {
+        ReadCancellation::Scope cancellable(cancel_reads);
         try {
             int i;
             while (free_slots.pop(i)) {

@@ -1,13 +1,34 @@
 // The `filmgrain` command. Each subcommand lives in its own file (cmd_*.cpp).
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <new>
 
 #include "cli_common.hpp"
 #include "core/simd_targets.hpp"
 #include "filmgrain/error.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+// Whatever a command printed to standard output is flushed and checked here, at the end of
+// every command: a report written into a full disk or a closed pipe is an error, not exit 0.
+// An earlier error keeps its own exit code and message.
+int finish_stdout(int rc) {
+    errno = 0;
+    const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout);
+    const int err = errno;
+    if (!failed) return rc;
+    if (rc == 0) {
+        std::fprintf(stderr, "filmgrain: error: cannot write standard output%s%s\n", err ? ": " : "",
+                     err ? std::strerror(err) : "");
+        return 1;
+    }
+    return rc;
+}
+
+int run(int argc, char** argv) {
     // FILMGRAIN_SIMD_TARGET=AVX2|SSE4|EMU128|...: run the optimized kernels for that vector
     // target only (verification and benchmarks; the output is the same for every target).
     if (const char* target = std::getenv("FILMGRAIN_SIMD_TARGET"); target && *target) {
@@ -41,9 +62,16 @@ int main(int argc, char** argv) {
     } catch (const filmgrain::Error& e) {
         std::fprintf(stderr, "filmgrain: error: %s\n", e.what());
         return e.code() == filmgrain::ErrorCode::kInvalidArgument ? 2 : 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "filmgrain: error: out of memory\n");
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "filmgrain: error: %s\n", e.what());
         return 1;
     }
     return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return finish_stdout(run(argc, argv)); }

@@ -1,20 +1,30 @@
 // Per-picture binary payload files, as --sei and --afgs1 take them: one file for
-// every picture, several for pictures 0, 1, ..., or one printf pattern
-// (frame%d.bin) where a missing file means no payload for that picture.
+// every picture, several for pictures 0, 1, ..., or one pattern (frame%d.bin, see
+// FilePattern) where a missing file means no payload for that picture. A name with a '%'
+// that is not a valid pattern (strength100%.bin) is a plain file.
 #pragma once
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "option_parsing.hpp"
+
 namespace filmgrain::cli {
+
+// The largest payload file read: an SEI or T.35 payload is at most a few kilobytes, so a
+// larger file (or /dev/zero) is not one.
+inline constexpr std::size_t kMaxPayloadFileBytes = 1u << 20;
+
+// Reads a payload file of at most kMaxPayloadFileBytes (Error naming the file otherwise).
+std::vector<uint8_t> read_payload_file(const std::string& path);
 
 class PayloadFiles {
 public:
     explicit PayloadFiles(std::vector<std::string> files);
     // The payload that arrives with picture k, if any.
     std::optional<std::vector<uint8_t>> for_picture(int k) const;
-    bool is_pattern() const { return pattern_; }
+    bool is_pattern() const { return pattern_.has_value(); }
     bool one_for_every_picture() const { return !pattern_ && fixed_.size() == 1; }
     // Payloads that exist, in picture order (a pattern is scanned from 0 until the first gap).
     std::vector<std::vector<uint8_t>> all() const;
@@ -22,11 +32,8 @@ public:
 
 private:
     std::vector<std::string> files_;
-    bool pattern_ = false;
+    std::optional<FilePattern> pattern_;
     std::vector<std::vector<uint8_t>> fixed_;
 };
-
-// printf-formats a %d pattern with k (throws Error(kInvalidArgument) on a bad pattern).
-std::string format_pattern(const std::string& pattern, int k);
 
 }  // namespace filmgrain::cli

@@ -111,9 +111,11 @@ FG_API const char* fg_last_error(const fg_context* ctx);
 
 /* Picture identifiers of the FGC seed derivation. */
 typedef struct fg_picture_ids {
-    int32_t poc;         /* PicOrderCnt (H.264: TopFieldOrderCnt of a frame) */
+    int32_t poc;         /* PicOrderCnt (H.264: TopFieldOrderCnt of a frame); any int32 */
     int32_t idr_pic_id;  /* H.264: idr_pic_id of the latest IDR picture; 0 elsewhere */
 } fg_picture_ids;
+/* The FGC seed takes (POC + (idr_pic_id << 5) + colour offset) mod 256 (RDD 5; vtm without
+ * the idr_pic_id term), computed modulo 2^32: every int32 value is valid. */
 
 /* ---- metadata, handed over as it arrives ------------------------------------------- */
 
@@ -123,7 +125,9 @@ typedef struct fg_picture_ids {
  * NULL means "the next picture applied". Several SEIs for one picture: the last pushed is
  * used. Up to 64 SEIs may wait. The payload is parsed at
  * once (FG_ERROR_MALFORMED_PAYLOAD); its values are checked against the picture format at
- * apply time. */
+ * apply time (FG_ERROR_INVALID_PARAMS naming the element, its value and the allowed range,
+ * e.g. comp_model_value[c][i][j] against what the SEI semantics let it carry at the film
+ * grain bit depth, 0..2^bitDepth - 1 for scale factors and cut-offs; or passthrough). */
 FG_API fg_status fg_context_push_fgc_sei(fg_context* ctx, const uint8_t* payload, size_t size, int codec,
                                          const fg_picture_ids* picture);
 
@@ -218,7 +222,14 @@ FG_API fg_status fg_context_reset(fg_context* ctx);
  * a bottom-up buffer). Chroma planes are ceil(width / 2) wide for 4:2:0 and 4:2:2 and
  * ceil(height / 2) high for 4:2:0. planes[1..2] are ignored for FG_CHROMA_400. Samples
  * must lie below 1 << bit_depth; the library does not scan for larger ones (a pass per
- * frame), which get unspecified grain but are never used to read outside its tables. */
+ * frame), which get unspecified grain but are never used to read outside its tables.
+ * Layout rules, checked before any sample is read (FG_ERROR_INVALID_ARGUMENT naming the
+ * field, e.g. "src.strides[1]" or "dst.planes[0]", and its value):
+ *   - |strides[p]| is at least a row of the plane (width x bytes per sample) and at most
+ *     what keeps the plane's rows within PTRDIFF_MAX bytes; any value for a one-row plane;
+ *   - bit_depth > 8: planes[p] and strides[p] are even. 16-bit samples at odd addresses
+ *     are not supported (they would be misaligned uint16_t reads): such planes are
+ *     refused, not copied or read bytewise. Every allocator's buffers satisfy this. */
 typedef struct fg_frame {
     void* planes[3];
     ptrdiff_t strides[3];

@@ -72,7 +72,13 @@ struct StreamScan {
 };
 
 StreamScan scan_stream(const uint8_t* data, std::size_t size, StreamCodec codec);
-// Reads the file (Error kIo when it cannot) and scans it; codec detected when absent.
+// The most of a coded stream scan_stream_file reads (the scan holds the stream in memory):
+// 1 GiB. A regular file larger than that fails before it is read; a pipe or device once more
+// arrives.
+inline constexpr std::size_t kMaxStreamFileBytes = std::size_t(1) << 30;
+// Reads the file (Error kIo when it cannot, or when it holds more than kMaxStreamFileBytes)
+// and scans it; codec detected when absent. A pipe or device whose first 16 MiB are neither a
+// recognisable stream nor a container (e.g. /dev/zero) fails then, without reading on.
 StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> codec);
 
 // The units a decoder outputs, in output order: by POC within each coded video sequence

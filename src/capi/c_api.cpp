@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/thread_pool.hpp"
+#include "fgc/plane_layout.hpp"
 #include "filmgrain/filmgrain.hpp"
 
 struct fg_context {
@@ -174,12 +175,10 @@ filmgrain::FrameView to_view(const fg_frame* f, const char* name) {
         v.planes[p].stride = f->strides[p];
         v.planes[p].width = filmgrain::plane_width(v.format, p, v.width);
         v.planes[p].height = filmgrain::plane_height(v.format, p, v.height);
-        const long long row = static_cast<long long>(v.planes[p].width) * v.bytes_per_sample();
-        const long long stride = f->strides[p] < 0 ? -static_cast<long long>(f->strides[p]) : f->strides[p];
-        if (v.planes[p].height > 1 && stride < row)
-            invalid(n + ".strides[" + std::to_string(p) + "] = " + std::to_string(f->strides[p]) +
-                    " is smaller than a row of the plane (" + std::to_string(row) + " bytes)");
     }
+    // strides[p]: at least a row, the plane within PTRDIFF_MAX bytes (computed without
+    // negating PTRDIFF_MIN); bit_depth > 8: even planes[p] and strides[p].
+    filmgrain::fgc::check_plane_layout(v, n);
     return v;
 }
 

@@ -13,9 +13,11 @@
 #include "core/thread_pool.hpp"
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
+#include "fgc/plane_layout.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/av1_params_json.hpp"
+#include "metadata/json_access.hpp"
 #include "metadata/fgc_sei.hpp"
 #include "metadata/params_file.hpp"
 
@@ -49,6 +51,10 @@ void copy_frame(const FrameView& src, const FrameView& dst) {
 }
 
 void check_views(const FrameView& src, const FrameView& dst) {
+    // First: the strides' range (an |stride| the AV1 check would compute from PTRDIFF_MIN
+    // overflows) and 2-byte alignment of 16-bit samples, for every model.
+    fgc::check_plane_layout(src, "src");
+    fgc::check_plane_layout(dst, "dst");
     av1::check_frame_view(src, "src");
     av1::check_frame_view(dst, "dst");
     if (src.format != dst.format || src.bit_depth != dst.bit_depth || src.width != dst.width ||
@@ -289,12 +295,10 @@ void GrainContext::receive_afgs1_t35(const uint8_t* payload, std::size_t size) {
 }
 
 void GrainContext::receive_json(std::string_view text, FgcCodec codec, std::optional<FgcPictureIds> picture) {
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(text.begin(), text.end());
-    } catch (const nlohmann::json::exception& e) {
-        throw Error(ErrorCode::kMalformedPayload, std::string("JSON parameters: ") + e.what());
-    }
+    // Bounded in size and nesting depth (json_access.hpp): a hostile document must not
+    // overflow the host decoder's stack.
+    const nlohmann::json j =
+        parse_json_document(reinterpret_cast<const uint8_t*>(text.data()), text.size(), "JSON parameters");
     if (j.is_object() && (j.contains("frames") || j.contains("frames_info")))
         throw Error(ErrorCode::kUnsupported,
                     "JSON parameters: a per-frame file ('frames' list) is not one parameter set; push each "
@@ -337,7 +341,7 @@ ApplyResult GrainContext::apply(const FrameView& src, const FrameView& dst, cons
     case Impl::Model::kAv1: r = s.apply_av1(src, dst, fi); break;
     case Impl::Model::kAfgs1: r = s.apply_afgs1(src, dst, fi); break;
     }
-    s.pictures_applied++;
+    s.pictures_applied = static_cast<int>(static_cast<unsigned>(s.pictures_applied) + 1u);  // wraps, as POC may
     return r;
 }
 

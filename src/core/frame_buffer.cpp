@@ -42,11 +42,26 @@ std::size_t FrameBuffer::frame_bytes(int width, int height, PixelFormat fmt) {
     return total;
 }
 
-FrameBuffer::FrameBuffer(int width, int height, PixelFormat fmt) : width_(width), height_(height), fmt_(fmt) {
-    if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+void check_picture_size(int width, int height) {
+    if (width <= 0 || height <= 0 || width > kMaxPictureDimension || height > kMaxPictureDimension ||
+        (long long)width * height > kMaxPictureSamples)
         throw Error(ErrorCode::kInvalidArgument,
-                    "frame size " + std::to_string(width) + "x" + std::to_string(height) +
-                        " is out of range (allowed 1..65536 in each dimension)");
+                    "picture size " + std::to_string(width) + "x" + std::to_string(height) +
+                        " is out of range (allowed width and height 1.." + std::to_string(kMaxPictureDimension) +
+                        " and at most " + std::to_string(kMaxPictureSamples) + " = 2^28 luma samples, e.g. 16384x16384)");
+}
+
+FrameBuffer::FrameBuffer(int width, int height, PixelFormat fmt) : FrameBuffer(width, height, fmt, Uninitialized{}) {
+    std::fill(bytes_.begin(), bytes_.end(), uint8_t(0));
+}
+
+FrameBuffer FrameBuffer::uninitialized(int width, int height, PixelFormat fmt) {
+    return FrameBuffer(width, height, fmt, Uninitialized{});
+}
+
+FrameBuffer::FrameBuffer(int width, int height, PixelFormat fmt, Uninitialized)
+    : width_(width), height_(height), fmt_(fmt) {
+    check_picture_size(width, height);
     if (fmt.bit_depth < 8 || fmt.bit_depth > 16)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("bit_depth", fmt.bit_depth, 8, 16));
     std::size_t bps = fmt.bit_depth > 8 ? 2 : 1, off = 0;
@@ -54,7 +69,7 @@ FrameBuffer::FrameBuffer(int width, int height, PixelFormat fmt) : width_(width)
         offsets_[p] = off;
         off += std::size_t(plane_width(fmt.chroma, p, width)) * plane_height(fmt.chroma, p, height) * bps;
     }
-    bytes_.assign(off, 0);
+    bytes_.resize(off);  // DefaultInitAllocator: not zero-filled
 }
 
 std::size_t FrameBuffer::plane_bytes(int p) const {

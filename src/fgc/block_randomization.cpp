@@ -6,7 +6,10 @@
 namespace filmgrain::fgc {
 
 uint32_t component_seed(int32_t pic_offset, int component) {
-    return kSeedLut[uint32_t(pic_offset + kColourOffset[component]) & 0xFF];
+    // Modulo 2^32: only the low 8 bits select the entry, and every int32 picture offset is
+    // legal (POC = INT32_MAX + 170 must not overflow); the low bits equal the references'
+    // (POC + offset) % 256 wherever their int arithmetic does not overflow.
+    return kSeedLut[(uint32_t(pic_offset) + uint32_t(kColourOffset[component])) & 0xFF];
 }
 
 void fill_block_states(uint32_t seed, int blocks_x, int blocks_y, std::vector<uint32_t>& states) {

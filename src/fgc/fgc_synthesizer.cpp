@@ -1,6 +1,7 @@
 #include "fgc/fgc_synthesizer.hpp"
 
 #include "core/frame_buffer.hpp"
+#include "fgc/plane_layout.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain {
@@ -106,6 +107,8 @@ void check_frame(const FrameView& src, const FrameView& dst) {
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("bit_depth", src.bit_depth, 8, 16));
     if (dst.width != src.width || dst.height != src.height || dst.bit_depth != src.bit_depth || dst.format != src.format)
         throw Error(ErrorCode::kInvalidArgument, "output frame does not match the input frame's size, bit depth or format");
+    fgc::check_plane_layout(src, "src");
+    fgc::check_plane_layout(dst, "dst");
     for (int c = 0; c < src.plane_count(); c++) {
         const int pw = plane_width(src.format, c, src.width), ph = plane_height(src.format, c, src.height);
         if (!src.planes[c].data || !dst.planes[c].data)
@@ -172,8 +175,11 @@ FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst,
     const int bs = options_.single_line_blocks ? options_.single_line_blocks
                    : options_.block_size       ? options_.block_size
                                                : fgc::default_block_size(options_.flavour, coded_w, coded_h);
-    int32_t pic_offset = ids.poc;
-    if (options_.flavour != FgcFlavour::kVtm) pic_offset = ids.poc + int32_t(uint32_t(ids.idr_pic_id) << 5);
+    // RDD 5 pic_offset = POC + (idr_pic_id << 5), vtm the POC alone, in wrapping (unsigned)
+    // arithmetic: any int32 ids are legal and only the low 8 bits reach the seed.
+    uint32_t offset = uint32_t(ids.poc);
+    if (options_.flavour != FgcFlavour::kVtm) offset += uint32_t(ids.idr_pic_id) << 5;
+    const int32_t pic_offset = int32_t(offset);
     if (options_.flavour == FgcFlavour::kTr || options_.single_line_blocks) {
         if (!tr_synthesis_ || tr_synthesis_->block_size() != bs)
             tr_synthesis_ = std::make_unique<fgc::TrFrameSynthesis>(options_.flavour, bs, options_.single_line_blocks);

@@ -21,7 +21,19 @@ constexpr int kMaxCutoffPairs = 10;
 
 }  // namespace
 
-void check_fgc_syntax_ranges(const FgcParams& p) {
+int film_grain_bit_depth(const FgcParams& p, int c, int picture_bit_depth) {
+    if (p.separate_colour_description_present_flag)
+        return (c == 0 ? p.film_grain_bit_depth_luma_minus8 : p.film_grain_bit_depth_chroma_minus8) + 8;
+    return picture_bit_depth > 0 ? picture_bit_depth : 16;
+}
+
+ValueRange comp_model_value_range(int model_id, int j, int bit_depth) {
+    if (model_id == 0 || (model_id == 1 && j == 0)) return {0, (1LL << bit_depth) - 1};
+    if (model_id == 1) return {-(1LL << (bit_depth - 1)), (1LL << (bit_depth - 1)) - 1};
+    return {-((1LL << 31) - 1), (1LL << 31) - 1};  // reserved model: what se(v) of 32 bits carries
+}
+
+void check_fgc_syntax_ranges(const FgcParams& p, int picture_bit_depth) {
     if (p.film_grain_characteristics_cancel_flag) return;
     if (p.film_grain_model_id < 0 || p.film_grain_model_id > 3)
         invalid(out_of_range_message("film_grain_model_id", p.film_grain_model_id, 0, 3));
@@ -55,6 +67,24 @@ void check_fgc_syntax_ranges(const FgcParams& p) {
                 invalid(out_of_range_message("intensity_interval_lower_bound" + idx, iv.intensity_interval_lower_bound, 0, 255));
             if (iv.intensity_interval_upper_bound < 0 || iv.intensity_interval_upper_bound > 255)
                 invalid(out_of_range_message("intensity_interval_upper_bound" + idx, iv.intensity_interval_upper_bound, 0, 255));
+            if (p.film_grain_model_id > 1) continue;  // reserved: no range defined (the flavours refuse it)
+            const int bd = film_grain_bit_depth(p, c, picture_bit_depth);
+            for (int j = 0; j <= m.num_model_values_minus1; j++) {
+                const int v = iv.comp_model_value[std::size_t(j)];
+                const ValueRange r = comp_model_value_range(p.film_grain_model_id, j, bd);
+                if (v >= r.lo && v <= r.hi) continue;
+                const std::string depth =
+                    p.separate_colour_description_present_flag
+                        ? std::string(c == 0 ? "film_grain_bit_depth_luma_minus8" : "film_grain_bit_depth_chroma_minus8") +
+                              " + 8"
+                    : picture_bit_depth > 0 ? "the picture's bit depth"
+                                            : "the deepest picture, 16 bits; the picture's bit depth narrows it";
+                const bool scale = p.film_grain_model_id == 0 || j == 0;
+                invalid(out_of_range_message(cmv(c, int(i), j), v, r.lo, r.hi) + " (film_grain_model_id " +
+                        std::to_string(p.film_grain_model_id) + ": " +
+                        (scale ? "0..2^filmGrainBitDepth - 1" : "-2^(filmGrainBitDepth - 1)..2^(filmGrainBitDepth - 1) - 1") +
+                        ", filmGrainBitDepth[" + std::to_string(c) + "] = " + std::to_string(bd) + " from " + depth + ")");
+            }
         }
     }
     if (p.film_grain_characteristics_repetition_period < 0 || p.film_grain_characteristics_repetition_period > 16384)
@@ -79,7 +109,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
         r.cancelled = true;
         return r;
     }
-    check_fgc_syntax_ranges(p);
+    check_fgc_syntax_ranges(p, fmt.bit_depth);
     const bool tr = flavour == FgcFlavour::kTr;
     if (!tr) {
         const std::string name = flavour == FgcFlavour::kVtm ? "vtm" : "rdd5";
@@ -164,8 +194,10 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
             }
             ResolvedInterval ri;
             ri.scale = iv.comp_model_value[0];
+            // Negative values never get here (check_fgc_syntax_ranges): the scale factor and
+            // sigma are 0 or more, so the products of synthesis stay within int32.
             if (ri.scale > max_scale)
-                invalid(cmv(c, int(i), 0) + " = " + std::to_string(ri.scale) + " is out of range (allowed ..." +
+                invalid(out_of_range_message(cmv(c, int(i), 0), ri.scale, 0, max_scale) + " (" +
                         std::to_string(max_scale) + max_scale_why);
             if (model == 1) {
                 // Auto-regressive model (tr). No chroma conversion is defined for it: the

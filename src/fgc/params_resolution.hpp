@@ -53,8 +53,36 @@ struct PictureFormat {
 // which the tr flavour accepts).
 ResolvedFgc resolve_fgc_params(const FgcParams& params, FgcFlavour flavour, const PictureFormat& format);
 
+// filmGrainBitDepth[c] of the SEI semantics: film_grain_bit_depth_luma_minus8 + 8 (c = 0) or
+// film_grain_bit_depth_chroma_minus8 + 8 when separate_colour_description_present_flag = 1;
+// otherwise those elements are inferred from the coded video, i.e. the picture's bit depth.
+// picture_bit_depth 0 means "not known here" and gives 16, the deepest picture the library
+// (and H.265) takes, so that the ranges below are the widest any picture allows.
+int film_grain_bit_depth(const FgcParams& params, int c, int picture_bit_depth);
+
+// The values comp_model_value[c][i][j] can carry, from the FGC SEI semantics (H.274 |
+// ISO/IEC 23002-7 8.5 "film_grain_characteristics", H.265 D.3.20, H.264 D.2.21, whose
+// range sentence FFmpeg's cbs_h265 / cbs_sei syntax templates transcribe):
+//   film_grain_model_id 0: 0 .. 2^filmGrainBitDepth[c] - 1
+//   film_grain_model_id 1: -2^(filmGrainBitDepth[c] - 1) .. 2^(filmGrainBitDepth[c] - 1) - 1
+// except comp_model_value[c][i][0] of model 1, the standard deviation sigma: the reference
+// that synthesizes model 1 (VersatileFilmGrain, TR 23002-9 7.5) takes it as the intensity
+// scale factor of model 0, 0 .. 2^filmGrainBitDepth[c] - 1, and the vfgs goldens signal
+// sigma up to 255 at 8 bits, so it has model 0's range (a negative deviation means nothing).
+// Reserved model ids (2, 3) have no range: se(v) carries any int32.
+struct ValueRange {
+    long long lo = 0;
+    long long hi = 0;
+};
+ValueRange comp_model_value_range(int film_grain_model_id, int j, int film_grain_bit_depth);
+
 // Checks the syntax-level ranges of H.274 (independent of any flavour), as a parser or the
-// JSON reader needs them. Throws Error(kInvalidParams).
-void check_fgc_syntax_ranges(const FgcParams& params);
+// JSON reader needs them: every element against the range its syntax element can carry,
+// comp_model_value[c][i][j] against comp_model_value_range with the picture's bit depth
+// (0: not known, the widest, see film_grain_bit_depth). Throws Error(kInvalidParams) naming
+// the element, its value and the allowed range. resolve_fgc_params and the vfgs flavour
+// call it with the picture's bit depth, so every path to synthesis (SEI payloads, typed
+// FgcParams from C++, JSON, the C API) goes through this one check.
+void check_fgc_syntax_ranges(const FgcParams& params, int picture_bit_depth = 0);
 
 }  // namespace filmgrain::fgc

@@ -17,6 +17,11 @@ bool is_stream_target(const std::string& path);
 // output) and pipes or devices (is_stream_target) are written directly: renaming over them
 // would replace the device or pipe with a plain file (and the pipe's reader would get
 // nothing), and there is no file to leave half-written.
+//
+// While a temporary exists it is also registered for removal on SIGINT, SIGTERM, SIGHUP and
+// SIGQUIT: the first OutputFile installs handlers for those signals (unless they are
+// ignored, as under nohup) that remove every registered temporary and then let the process
+// die by the same signal.
 class OutputFile {
 public:
     explicit OutputFile(std::string path);
@@ -40,6 +45,7 @@ private:
     std::string path_, write_path_;
     std::FILE* stream_ = nullptr;
     bool direct_ = false, committed_ = false;
+    int signal_slot_ = -1;  // its entry in the list the signal handler removes
 };
 
 }  // namespace filmgrain

@@ -4,10 +4,8 @@
 #include <unistd.h>
 
 #include <bit>
-#include <cctype>
 #include <cstring>
 #include <utility>
-#include <sstream>
 #include <vector>
 
 #include "filmgrain/error.hpp"
@@ -18,131 +16,107 @@ bool has_y4m_extension(const std::string& p) {
     return p.size() >= 4 && (p.compare(p.size() - 4, 4, ".y4m") == 0 || p.compare(p.size() - 4, 4, ".Y4M") == 0);
 }
 
-std::string y4m_colorspace_tag(const PixelFormat& f) {
-    std::string base = f.chroma == ChromaFormat::k400   ? "mono"
-                       : f.chroma == ChromaFormat::k420 ? "420"
-                       : f.chroma == ChromaFormat::k422 ? "422"
-                                                        : "444";
-    if (f.bit_depth == 8) return f.chroma == ChromaFormat::k420 ? "420jpeg" : base;
-    return base + "p" + std::to_string(f.bit_depth);
-}
-
 namespace {
 // Files hold 16-bit samples little-endian; memory holds them in host order.
 [[maybe_unused]] void swap_bytes_16(uint8_t* p, std::size_t n) {
     for (std::size_t i = 0; i + 1 < n; i += 2) std::swap(p[i], p[i + 1]);
 }
 
-PixelFormat parse_y4m_colorspace(const std::string& c) {
-    PixelFormat f;
-    std::string base = c;
-    int bd = 8;
-    auto p = c.find('p');
-    if (c.rfind("mono", 0) == 0) {
-        f.chroma = ChromaFormat::k400;
-        if (c.size() > 4) bd = std::atoi(c.c_str() + 4);
-    } else {
-        if (c.rfind("420", 0) == 0) f.chroma = ChromaFormat::k420;
-        else if (c.rfind("422", 0) == 0) f.chroma = ChromaFormat::k422;
-        else if (c.rfind("444", 0) == 0) f.chroma = ChromaFormat::k444;
-        else throw Error(ErrorCode::kIo, "Y4M colour space C" + c + " is not supported (allowed 420*, 422*, 444*, mono*)");
-        if (p != std::string::npos && p + 1 < c.size() && std::isdigit((unsigned char)c[p + 1])) bd = std::atoi(c.c_str() + p + 1);
-        if (c == "444alpha") throw Error(ErrorCode::kIo, "Y4M colour space C444alpha is not supported");
-    }
-    if (bd != 8 && bd != 9 && bd != 10 && bd != 12 && bd != 14 && bd != 16)
-        throw Error(ErrorCode::kIo, "Y4M colour space C" + c + " has bit depth " + std::to_string(bd) + " (allowed 8..16)");
-    f.bit_depth = bd;
-    return f;
+std::string frame_description(const VideoInfo& info) {
+    return std::to_string(info.width) + "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format);
 }
 }  // namespace
 
 VideoReader::VideoReader(const std::string& path, const VideoInfo& raw_info, bool force_raw) : path_(path) {
-    if (path == "-") {
-        f_ = stdin;
-    } else {
-        f_ = std::fopen(path.c_str(), "rb");
-        if (!f_) throw Error(ErrorCode::kIo, "cannot open input '" + path + "': " + std::strerror(errno));
-        owns_ = true;
-    }
+    in_ = std::make_unique<InputFile>(path);
     info_ = raw_info;
     info_.y4m = false;
-    if (!force_raw) {
-        int c = std::fgetc(f_);
-        if (c != EOF) std::ungetc(c, f_);
-        if (c == 'Y' || has_y4m_extension(path)) {
-            parse_y4m_header();
-            return;
-        }
+    if (!force_raw && (in_->peek() == 'Y' || has_y4m_extension(path))) {
+        read_y4m_header();
+        return;
     }
     if (info_.width <= 0 || info_.height <= 0)
         throw Error(ErrorCode::kInvalidArgument, "raw input '" + path + "' needs --size WxH and --pix-fmt");
+    try {
+        check_picture_size(info_.width, info_.height);
+    } catch (const Error& e) {
+        throw Error(e.code(), "raw input '" + path + "': " + e.what());
+    }
 }
 
-VideoReader::~VideoReader() {
-    if (owns_ && f_) std::fclose(f_);
-}
+VideoReader::~VideoReader() = default;
 
-void VideoReader::parse_y4m_header() {
+void VideoReader::read_y4m_header() {
     std::string line;
     int c;
-    while ((c = std::fgetc(f_)) != EOF && c != '\n') {
+    while ((c = in_->get()) >= 0 && c != '\n') {
         line.push_back(char(c));
-        if (line.size() > 4096) throw Error(ErrorCode::kIo, "Y4M header of '" + path_ + "' is longer than 4096 bytes");
+        if (line.size() > kMaxY4mHeaderBytes)
+            throw Error(ErrorCode::kIo, "Y4M header of '" + path_ + "' is longer than " +
+                                            std::to_string(kMaxY4mHeaderBytes) + " bytes");
     }
     if (line.rfind("YUV4MPEG2", 0) != 0)
         throw Error(ErrorCode::kIo, "'" + path_ + "' has a .y4m name but no YUV4MPEG2 header");
-    std::istringstream ss(line.substr(9));
-    std::string tok;
-    info_.y4m = true;
-    info_.width = info_.height = 0;
-    info_.format = PixelFormat{ChromaFormat::k420, 8};
-    info_.y4m_extra.clear();
-    while (ss >> tok) {
-        switch (tok[0]) {
-            case 'W': info_.width = std::atoi(tok.c_str() + 1); break;
-            case 'H': info_.height = std::atoi(tok.c_str() + 1); break;
-            case 'C': info_.format = parse_y4m_colorspace(tok.substr(1)); break;
-            case 'F': {
-                int n = 0, d = 0;
-                if (std::sscanf(tok.c_str() + 1, "%d:%d", &n, &d) == 2 && n > 0 && d > 0) {
-                    info_.fps_num = n;
-                    info_.fps_den = d;
-                }
-                break;
-            }
-            default: info_.y4m_extra += " " + tok; break;
-        }
+    if (c < 0) throw Error(ErrorCode::kIo, "'" + path_ + "' ends inside its Y4M header");
+    Y4mHeader h;
+    try {
+        h = parse_y4m_header(line);
+    } catch (const Error& e) {
+        throw Error(ErrorCode::kIo, "'" + path_ + "': " + e.what());
     }
-    if (info_.width <= 0 || info_.height <= 0 || info_.width > 65536 || info_.height > 65536)
-        throw Error(ErrorCode::kIo, "Y4M header of '" + path_ + "' has an invalid size " + std::to_string(info_.width) +
-                                        "x" + std::to_string(info_.height));
+    info_.y4m = true;
+    info_.width = h.width;
+    info_.height = h.height;
+    info_.format = h.format;
+    if (h.fps_num > 0) {
+        info_.fps_num = h.fps_num;
+        info_.fps_den = h.fps_den;
+    }
+    info_.y4m_extra = h.extra;
 }
 
 bool VideoReader::read(FrameBuffer& frame) {
     if (info_.y4m) {
-        char hdr[6];
-        std::size_t n = std::fread(hdr, 1, 5, f_);
-        if (n == 0) return false;
-        if (n < 5 || std::memcmp(hdr, "FRAME", 5) != 0)
-            throw Error(ErrorCode::kIo, "'" + path_ + "': frame " + std::to_string(frames_) + " does not start with FRAME");
-        int c;
-        int guard = 0;
-        while ((c = std::fgetc(f_)) != EOF && c != '\n')
-            if (++guard > 4096) throw Error(ErrorCode::kIo, "'" + path_ + "': FRAME header too long");
-        if (c == EOF)
+        int c = in_->get();
+        if (c < 0) return false;
+        std::string line(1, char(c));
+        while ((c = in_->get()) >= 0 && c != '\n') {
+            line.push_back(char(c));
+            if (line.size() > kMaxY4mHeaderBytes) break;
+        }
+        try {
+            parse_y4m_frame_header(line);
+        } catch (const Error& e) {
+            throw Error(ErrorCode::kIo, "'" + path_ + "': frame " + std::to_string(frames_) + ": " + e.what());
+        }
+        if (c < 0)
             throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " has no data");
+    }
+    const std::size_t want = FrameBuffer::frame_bytes(info_.width, info_.height, info_.format);
+    // A regular file tells how much it holds: a frame it cannot hold fails here, before the
+    // frame is allocated.
+    if (const auto left = in_->remaining()) {
+        if (*left == 0 && !info_.y4m) return false;
+        if (*left < want) {
+            if (frames_ == 0)
+                throw Error(ErrorCode::kIo, "'" + path_ + "' holds " + std::to_string(*left) + " bytes" +
+                                                (info_.y4m ? " of frame data" : "") + ", less than one " +
+                                                frame_description(info_) + " frame (" + std::to_string(want) +
+                                                " bytes)");
+            throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " has " +
+                                            std::to_string(*left) + " of " + std::to_string(want) + " bytes (" +
+                                            frame_description(info_) + ")");
+        }
     }
     if (frame.width() != info_.width || frame.height() != info_.height ||
         frame.format().chroma != info_.format.chroma || frame.format().bit_depth != info_.format.bit_depth)
-        frame = FrameBuffer(info_.width, info_.height, info_.format);
-    const std::size_t want = frame.byte_size();
-    std::size_t got = std::fread(frame.bytes(), 1, want, f_);
+        frame = FrameBuffer::uninitialized(info_.width, info_.height, info_.format);
+    const std::size_t got = in_->read(frame.bytes(), want);
     if (got == 0 && !info_.y4m) return false;
     if (got != want)
         throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " has " +
                                         std::to_string(got) + " of " + std::to_string(want) + " bytes (" +
-                                        std::to_string(info_.width) + "x" + std::to_string(info_.height) + " " +
-                                        pix_fmt_name(info_.format) + ")");
+                                        frame_description(info_) + ")");
     if constexpr (std::endian::native == std::endian::big)
         if (info_.format.bit_depth > 8) swap_bytes_16(frame.bytes(), want);
     frames_++;

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "core/frame_buffer.hpp"
+#include "io/input_file.hpp"
 #include "io/output_file.hpp"
+#include "io/y4m_header.hpp"
 
 namespace filmgrain {
 
@@ -26,17 +28,21 @@ class VideoReader {
 public:
     // Raw input needs `raw_info` (size and format); Y4M input (".y4m" or a YUV4MPEG2
     // header) describes itself and `raw_info` is ignored except for fps when absent.
+    // The picture size is checked against the limit (check_picture_size) here, before
+    // anything is allocated. "-" is standard input.
     VideoReader(const std::string& path, const VideoInfo& raw_info, bool force_raw = false);
     ~VideoReader();
     const VideoInfo& info() const { return info_; }
-    // false at a clean end of file; throws Error(kIo) on a truncated frame.
+    // false at a clean end of file; throws Error(kIo) on a truncated frame. A regular file
+    // too short for the frame fails before the frame is allocated; `frame` is (re)allocated
+    // without zero fill when its size or format differs. Reads wait cancellably on a pipe
+    // (ReadCancellation, input_file.hpp).
     bool read(FrameBuffer& frame);
     int frames_read() const { return frames_; }
 
 private:
-    void parse_y4m_header();
-    std::FILE* f_ = nullptr;
-    bool owns_ = false;
+    void read_y4m_header();
+    std::unique_ptr<InputFile> in_;
     std::string path_;
     VideoInfo info_;
     int frames_ = 0;
@@ -63,6 +69,5 @@ private:
 };
 
 bool has_y4m_extension(const std::string& path);
-std::string y4m_colorspace_tag(const PixelFormat& f);
 
 }  // namespace filmgrain

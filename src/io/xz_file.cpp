@@ -2,22 +2,12 @@
 
 #include <lzma.h>
 
-#include <cstdio>
-#include <memory>
-
 #include "filmgrain/error.hpp"
 
 namespace filmgrain {
 
 std::vector<uint8_t> read_whole_file(const std::string& path) {
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for reading");
-    std::vector<uint8_t> out;
-    uint8_t buf[1 << 16];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) out.insert(out.end(), buf, buf + n);
-    if (std::ferror(f.get())) throw Error(ErrorCode::kIo, "read error on '" + path + "'");
-    return out;
+    return read_whole_file(path, kDefaultMaxFileBytes, "a file read whole");
 }
 
 std::vector<uint8_t> read_xz_file(const std::string& path) {
@@ -33,7 +23,13 @@ std::vector<uint8_t> read_xz_file(const std::string& path) {
         strm.next_out = buf;
         strm.avail_out = sizeof buf;
         lzma_ret r = lzma_code(&strm, LZMA_FINISH);
-        out.insert(out.end(), buf, buf + (sizeof buf - strm.avail_out));
+        const std::size_t n = sizeof buf - strm.avail_out;
+        if (n > kMaxXzContentBytes - out.size()) {
+            lzma_end(&strm);
+            throw Error(ErrorCode::kIo, "'" + path + "' decompresses to more than " +
+                                            std::to_string(kMaxXzContentBytes) + " bytes (1 GiB), the limit");
+        }
+        out.insert(out.end(), buf, buf + n);
         if (r == LZMA_STREAM_END) break;
         if (r != LZMA_OK) {
             lzma_end(&strm);

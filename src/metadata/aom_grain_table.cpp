@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "filmgrain/error.hpp"
+#include "io/input_file.hpp"
 
 namespace filmgrain {
 namespace {
@@ -197,13 +198,10 @@ AomGrainTable parse_aom_grain_table(std::string_view text) {
 }
 
 AomGrainTable read_aom_grain_table(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(ErrorCode::kIo, "cannot open grain table '" + path + "'");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw Error(ErrorCode::kIo, "cannot read grain table '" + path + "'");
+    // bounded: a device such as /dev/zero or a huge file fails fast instead of filling memory
+    const std::vector<uint8_t> bytes = read_whole_file(path, kDefaultMaxFileBytes, "a libaom grain table");
     try {
-        return parse_aom_grain_table(ss.str());
+        return parse_aom_grain_table(std::string(bytes.begin(), bytes.end()));
     } catch (const Error& e) {
         throw Error(e.code(), path + ": " + e.what());
     }

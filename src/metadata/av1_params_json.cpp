@@ -4,6 +4,7 @@
 #include <string>
 
 #include "filmgrain/error.hpp"
+#include "metadata/json_access.hpp"
 
 namespace filmgrain {
 namespace {
@@ -12,22 +13,29 @@ using nlohmann::json;
 
 [[noreturn]] void fail(const std::string& msg) { throw Error(ErrorCode::kMalformedPayload, "AV1 params JSON: " + msg); }
 
-int get_int(const json& j, const char* key, int fallback, bool required) {
+// Every value is checked against what its syntax element can carry (AV1 5.9.30
+// film_grain_params(): f(1) flags, f(16) grain_seed, f(8) points and coefficients, f(9)
+// offsets...), so nothing wraps on the way into an int; the rules that depend on the frame
+// (point order, chroma points of 4:2:0, bit depth) are av1::validate_params's.
+int get_int(const json& j, const char* key, int fallback, bool required, long long lo, long long hi) {
     auto it = j.find(key);
     if (it == j.end() || it->is_null()) {
         if (required) fail(std::string("missing key \"") + key + "\"");
         return fallback;
     }
-    if (!it->is_number_integer()) fail(std::string("\"") + key + "\" must be an integer, got " + it->dump());
-    const long long v = it->get<long long>();
-    if (v < -(1LL << 31) || v > (1LL << 31) - 1) fail(std::string("\"") + key + "\" = " + it->dump() + " does not fit an int");
-    return static_cast<int>(v);
+    if (!it->is_number_integer() && !it->is_boolean())
+        fail(std::string("\"") + key + "\" must be an integer, got " + json_brief(*it));
+    try {
+        return int(json_to_integer(*it, lo, hi, std::string("\"") + key + "\""));
+    } catch (const Error& e) {
+        fail(e.what());
+    }
 }
 
 // Reads an integer array of at most N entries into out (leaving the rest);
 // returns the number read.
 template <std::size_t N>
-int get_array(const json& j, const char* key, std::array<int, N>& out, bool required) {
+int get_array(const json& j, const char* key, std::array<int, N>& out, bool required, long long lo, long long hi) {
     auto it = j.find(key);
     if (it == j.end() || it->is_null()) {
         if (required) fail(std::string("missing key \"") + key + "\"");
@@ -39,8 +47,13 @@ int get_array(const json& j, const char* key, std::array<int, N>& out, bool requ
              std::to_string(N) + " allowed)");
     for (std::size_t i = 0; i < it->size(); ++i) {
         const json& e = (*it)[i];
-        if (!e.is_number_integer()) fail(std::string("\"") + key + "[" + std::to_string(i) + "]\" must be an integer");
-        out[i] = e.get<int>();
+        const std::string name = std::string(key) + "[" + std::to_string(i) + "]";
+        if (!e.is_number_integer()) fail("\"" + name + "\" must be an integer, got " + json_brief(e));
+        try {
+            out[i] = int(json_to_integer(e, lo, hi, "\"" + name + "\""));
+        } catch (const Error& err) {
+            fail(err.what());
+        }
     }
     return static_cast<int>(it->size());
 }
@@ -48,12 +61,9 @@ int get_array(const json& j, const char* key, std::array<int, N>& out, bool requ
 template <std::size_t N>
 void read_points(const json& j, const char* num_key, const char* value_key, const char* scaling_key, int& num,
                  std::array<int, N>& values, std::array<int, N>& scalings, bool required) {
-    num = get_int(j, num_key, 0, required);
-    if (num < 0 || num > static_cast<int>(N))
-        fail(std::string("\"") + num_key + "\" = " + std::to_string(num) + " is out of range (allowed 0.." +
-             std::to_string(N) + ")");
-    const int nv = get_array(j, value_key, values, required && num > 0);
-    const int ns = get_array(j, scaling_key, scalings, required && num > 0);
+    num = get_int(j, num_key, 0, required, 0, static_cast<int>(N));
+    const int nv = get_array(j, value_key, values, required && num > 0, 0, 255);
+    const int ns = get_array(j, scaling_key, scalings, required && num > 0, 0, 255);
     if ((j.contains(value_key) && nv != num) || (j.contains(scaling_key) && ns != num))
         fail(std::string("\"") + value_key + "\" / \"" + scaling_key + "\" must have " + num_key + " = " +
              std::to_string(num) + " entries (got " + std::to_string(nv) + " / " + std::to_string(ns) + ")");
@@ -61,7 +71,7 @@ void read_points(const json& j, const char* num_key, const char* value_key, cons
 
 template <std::size_t N>
 void read_coeffs(const json& j, const char* key, std::array<int, N>& out, int expected, bool signalled) {
-    const int n = get_array(j, key, out, signalled && expected > 0);
+    const int n = get_array(j, key, out, signalled && expected > 0, 0, 255);
     if (signalled && n != expected)
         fail(std::string("\"") + key + "\" has " + std::to_string(n) + " entries, expected " +
              std::to_string(expected) + " for this ar_coeff_lag / num_y_points");
@@ -78,37 +88,35 @@ json int_array(const int* v, int n) {
 Av1FilmGrainParams av1_params_from_json(const json& j) {
     if (!j.is_object()) fail("parameters must be a JSON object");
     Av1FilmGrainParams p;
-    p.apply_grain = get_int(j, "apply_grain", 0, true);
+    p.apply_grain = get_int(j, "apply_grain", 0, true, 0, 1);
     const bool req = p.apply_grain != 0;
-    p.grain_seed = get_int(j, "grain_seed", 0, req);
-    p.update_grain = get_int(j, "update_grain", 1, false);
-    p.film_grain_params_ref_idx = get_int(j, "film_grain_params_ref_idx", 0, false);
+    p.grain_seed = get_int(j, "grain_seed", 0, req, 0, 65535);
+    p.update_grain = get_int(j, "update_grain", 1, false, 0, 1);
+    p.film_grain_params_ref_idx = get_int(j, "film_grain_params_ref_idx", 0, false, 0, 7);
     read_points(j, "num_y_points", "point_y_value", "point_y_scaling", p.num_y_points, p.point_y_value,
                 p.point_y_scaling, req);
-    p.chroma_scaling_from_luma = get_int(j, "chroma_scaling_from_luma", 0, false);
+    p.chroma_scaling_from_luma = get_int(j, "chroma_scaling_from_luma", 0, false, 0, 1);
     read_points(j, "num_cb_points", "point_cb_value", "point_cb_scaling", p.num_cb_points, p.point_cb_value,
                 p.point_cb_scaling, false);
     read_points(j, "num_cr_points", "point_cr_value", "point_cr_scaling", p.num_cr_points, p.point_cr_value,
                 p.point_cr_scaling, false);
-    p.grain_scaling_minus_8 = get_int(j, "grain_scaling_minus_8", 0, req);
-    p.ar_coeff_lag = get_int(j, "ar_coeff_lag", 0, req);
-    if (p.ar_coeff_lag < 0 || p.ar_coeff_lag > 3)
-        fail("\"ar_coeff_lag\" = " + std::to_string(p.ar_coeff_lag) + " is out of range (allowed 0..3)");
+    p.grain_scaling_minus_8 = get_int(j, "grain_scaling_minus_8", 0, req, 0, 3);
+    p.ar_coeff_lag = get_int(j, "ar_coeff_lag", 0, req, 0, 3);
     read_coeffs(j, "ar_coeffs_y_plus_128", p.ar_coeffs_y_plus_128, p.num_pos_luma(), req && p.num_y_points > 0);
     read_coeffs(j, "ar_coeffs_cb_plus_128", p.ar_coeffs_cb_plus_128, p.num_pos_chroma(),
                 req && (p.chroma_scaling_from_luma || p.num_cb_points > 0));
     read_coeffs(j, "ar_coeffs_cr_plus_128", p.ar_coeffs_cr_plus_128, p.num_pos_chroma(),
                 req && (p.chroma_scaling_from_luma || p.num_cr_points > 0));
-    p.ar_coeff_shift_minus_6 = get_int(j, "ar_coeff_shift_minus_6", 0, req);
-    p.grain_scale_shift = get_int(j, "grain_scale_shift", 0, req);
-    p.cb_mult = get_int(j, "cb_mult", 128, false);
-    p.cb_luma_mult = get_int(j, "cb_luma_mult", 192, false);
-    p.cb_offset = get_int(j, "cb_offset", 256, false);
-    p.cr_mult = get_int(j, "cr_mult", 128, false);
-    p.cr_luma_mult = get_int(j, "cr_luma_mult", 192, false);
-    p.cr_offset = get_int(j, "cr_offset", 256, false);
-    p.overlap_flag = get_int(j, "overlap_flag", 0, req);
-    p.clip_to_restricted_range = get_int(j, "clip_to_restricted_range", 0, req);
+    p.ar_coeff_shift_minus_6 = get_int(j, "ar_coeff_shift_minus_6", 0, req, 0, 3);
+    p.grain_scale_shift = get_int(j, "grain_scale_shift", 0, req, 0, 3);
+    p.cb_mult = get_int(j, "cb_mult", 128, false, 0, 255);
+    p.cb_luma_mult = get_int(j, "cb_luma_mult", 192, false, 0, 255);
+    p.cb_offset = get_int(j, "cb_offset", 256, false, 0, 511);
+    p.cr_mult = get_int(j, "cr_mult", 128, false, 0, 255);
+    p.cr_luma_mult = get_int(j, "cr_luma_mult", 192, false, 0, 255);
+    p.cr_offset = get_int(j, "cr_offset", 256, false, 0, 511);
+    p.overlap_flag = get_int(j, "overlap_flag", 0, req, 0, 1);
+    p.clip_to_restricted_range = get_int(j, "clip_to_restricted_range", 0, req, 0, 1);
     return p;
 }
 
@@ -157,11 +165,17 @@ json av1_params_to_json(const Av1FilmGrainParams& p) {
 Av1ColorInfo av1_color_info_from_json(const json& j) {
     if (!j.is_object()) fail("frame facts must be a JSON object");
     Av1ColorInfo c;
-    c.bit_depth = get_int(j, "bit_depth", 8, false);
-    c.mono_chrome = get_int(j, "mono_chrome", 0, false);
-    c.subsampling_x = get_int(j, "subsampling_x", 1, false);
-    c.subsampling_y = get_int(j, "subsampling_y", 1, false);
-    c.matrix_coefficients = get_int(j, "matrix_coefficients", 2, false);
+    // AV1 color_config(): BitDepth 8, 10 or 12; flags of one bit; matrix_coefficients f(8).
+    c.bit_depth = get_int(j, "bit_depth", 8, false, 8, 12);
+    if (c.bit_depth != 8 && c.bit_depth != 10 && c.bit_depth != 12)
+        fail("\"bit_depth\" = " + std::to_string(c.bit_depth) + " is not an AV1 bit depth (allowed 8, 10, 12)");
+    c.mono_chrome = get_int(j, "mono_chrome", 0, false, 0, 1);
+    c.subsampling_x = get_int(j, "subsampling_x", 1, false, 0, 1);
+    c.subsampling_y = get_int(j, "subsampling_y", 1, false, 0, 1);
+    if (c.subsampling_y > c.subsampling_x)
+        fail("subsampling_y = 1 with subsampling_x = 0 (4:4:0) is not an AV1 format (allowed subsampling_y <= "
+             "subsampling_x)");
+    c.matrix_coefficients = get_int(j, "matrix_coefficients", 2, false, 0, 255);
     return c;
 }
 

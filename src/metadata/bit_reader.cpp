@@ -1,5 +1,7 @@
 #include "metadata/bit_reader.hpp"
 
+#include <cstdint>
+
 namespace filmgrain {
 
 void BitReader::truncated(const char* field) const {
@@ -58,6 +60,9 @@ void BitWriter::u(int bits, uint32_t value) {
 }
 
 void BitWriter::ue(uint32_t value) {
+    // 2^32 - 1 would need 32 leading zeros, which no reader (this one included) accepts.
+    if (value == 0xFFFFFFFFu)
+        throw Error(ErrorCode::kInvalidParams, out_of_range_message("an ue(v) value", value, 0, 0xFFFFFFFEll));
     uint64_t v = uint64_t(value) + 1;
     int len = 0;
     while ((v >> len) > 1) len++;
@@ -66,6 +71,9 @@ void BitWriter::ue(uint32_t value) {
 }
 
 void BitWriter::se(int32_t value) {
+    // INT32_MIN maps to code number 2^32, one more than ue(v) carries.
+    if (value == INT32_MIN)
+        throw Error(ErrorCode::kInvalidParams, out_of_range_message("an se(v) value", value, -0x7FFFFFFFll, 0x7FFFFFFFll));
     uint32_t k = value > 0 ? uint32_t(2 * int64_t(value) - 1) : uint32_t(-2 * int64_t(value));
     ue(k);
 }

@@ -1,15 +1,109 @@
 #include "metadata/json_access.hpp"
 
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <limits>
+
+
 namespace filmgrain {
 
+using nlohmann::json;
+
+json parse_json_document(const uint8_t* data, std::size_t size, const std::string& what) {
+    if (size > kMaxJsonBytes)
+        throw Error(ErrorCode::kMalformedPayload, what + " has " + std::to_string(size) + " bytes (allowed at most " +
+                                                   std::to_string(kMaxJsonBytes) + " for a JSON document)");
+    // The depth is bounded while parsing: nlohmann's parser keeps its own stack, but every
+    // consumer of the document (dump, comparison, the readers) recurses over it.
+    const json::parser_callback_t bound_depth = [&](int depth, json::parse_event_t event, json&) {
+        if ((event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) &&
+            depth >= kMaxJsonDepth)
+            throw Error(ErrorCode::kMalformedPayload, what + " nests JSON objects/arrays deeper than " +
+                                                       std::to_string(kMaxJsonDepth) + " levels (allowed at most " +
+                                                       std::to_string(kMaxJsonDepth) + ")");
+        return true;
+    };
+    try {
+        return json::parse(data, data + size, bound_depth);
+    } catch (const json::exception& e) {
+        throw Error(ErrorCode::kMalformedPayload, what + " is not valid JSON: " + e.what());
+    }
+}
+
+namespace {
+// Reads at most `limit` bytes, so that /dev/zero or a huge file fails fast.
+std::vector<uint8_t> read_at_most(const std::string& path, std::size_t limit) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "' for reading: " + std::strerror(errno));
+    std::vector<uint8_t> out;
+    uint8_t buf[1 << 16];
+    std::size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) {
+        if (out.size() + n > limit)
+            throw Error(ErrorCode::kInvalidParams, "'" + path + "' is larger than " + std::to_string(limit) +
+                                                       " bytes, the most a JSON parameter file may have");
+        out.insert(out.end(), buf, buf + n);
+    }
+    if (std::ferror(f.get())) throw Error(ErrorCode::kIo, "read error on '" + path + "': " + std::strerror(errno));
+    return out;
+}
+}  // namespace
+
+json read_json_file(const std::string& path) {
+    const std::vector<uint8_t> bytes = read_at_most(path, kMaxJsonBytes);
+    return parse_json_document(bytes.data(), bytes.size(), "'" + path + "'");
+}
+
+std::string json_brief(const json& v) {
+    if (v.is_array()) return "an array of " + std::to_string(v.size()) + " entries";
+    if (v.is_object()) return "an object of " + std::to_string(v.size()) + " keys";
+    if (v.is_string()) {
+        const std::string& s = v.get_ref<const std::string&>();
+        return s.size() <= 40 ? json(s).dump() : json(s.substr(0, 40)).dump() + "...";
+    }
+    return v.dump();
+}
+
+long long json_to_integer(const json& v, long long lo, long long hi, const std::string& name) {
+    if (v.is_boolean()) {
+        const long long x = v.get<bool>() ? 1 : 0;
+        if (x < lo || x > hi) throw Error(ErrorCode::kInvalidParams, out_of_range_message(name, x, lo, hi));
+        return x;
+    }
+    if (v.is_number_unsigned()) {
+        const unsigned long long u = v.get<unsigned long long>();
+        if (u > (unsigned long long)std::numeric_limits<long long>::max() || (long long)u > hi)
+            throw Error(ErrorCode::kInvalidParams, name + " = " + std::to_string(u) + " is out of range (allowed " +
+                                                       std::to_string(lo) + ".." + std::to_string(hi) + ")");
+        const long long x = (long long)u;
+        if (x < lo) throw Error(ErrorCode::kInvalidParams, out_of_range_message(name, x, lo, hi));
+        return x;
+    }
+    if (v.is_number_integer()) {
+        const long long x = v.get<long long>();
+        if (x < lo || x > hi) throw Error(ErrorCode::kInvalidParams, out_of_range_message(name, x, lo, hi));
+        return x;
+    }
+    if (v.is_number_float()) {
+        const double d = v.get<double>();
+        // compared as doubles first: converting a double beyond long long is undefined
+        if (std::isfinite(d) && d == std::floor(d)) {
+            if (d < double(lo) || d > double(hi))
+                throw Error(ErrorCode::kInvalidParams, name + " = " + v.dump() + " is out of range (allowed " +
+                                                           std::to_string(lo) + ".." + std::to_string(hi) + ")");
+            return (long long)d;
+        }
+    }
+    throw Error(ErrorCode::kInvalidParams, name + " = " + json_brief(v) + " is not an integer");
+}
+
 int JsonObject::to_int(const nlohmann::json& v, long long lo, long long hi, const std::string& name) {
-    long long x;
-    if (v.is_boolean()) x = v.get<bool>() ? 1 : 0;
-    else if (v.is_number_integer()) x = v.get<long long>();
-    else if (v.is_number_float() && v.get<double>() == double((long long)v.get<double>())) x = (long long)v.get<double>();
-    else throw Error(ErrorCode::kInvalidParams, name + " = " + v.dump() + " is not an integer");
-    if (x < lo || x > hi) throw Error(ErrorCode::kInvalidParams, out_of_range_message(name, x, lo, hi));
-    return int(x);
+    return int(json_to_integer(v, std::max<long long>(lo, std::numeric_limits<int>::min()),
+                               std::min<long long>(hi, std::numeric_limits<int>::max()), name));
 }
 
 int JsonObject::get_int(const char* key, int fallback, long long lo, long long hi) const {

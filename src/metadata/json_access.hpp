@@ -9,6 +9,28 @@
 
 namespace filmgrain {
 
+// Limits of every JSON document the project reads (parameter files, case.json, the C
+// API's JSON): a parameter file is a few kilobytes and nests six levels deep, so these
+// leave ample room while keeping a hostile file from exhausting memory or the stack.
+inline constexpr std::size_t kMaxJsonBytes = 16u << 20;
+inline constexpr int kMaxJsonDepth = 64;
+
+// Parses one JSON document of at most kMaxJsonBytes and kMaxJsonDepth levels of nesting.
+// Errors (Error(kInvalidParams)) name `what` (a file name or "JSON parameters"), and for
+// a syntax error the byte offset nlohmann reports.
+nlohmann::json parse_json_document(const uint8_t* data, std::size_t size, const std::string& what);
+// The same for a file (read with the same size bound; Error(kIo) when it cannot be read).
+nlohmann::json read_json_file(const std::string& path);
+
+// A value as an error message may quote it: scalars as written (strings cut at 40
+// characters), containers by kind and size, never recursively.
+std::string json_brief(const nlohmann::json& v);
+
+// An integer JSON value (or a boolean, or a float with an integral value) as a long long,
+// range-checked against lo..hi without wrapping: unsigned values above the range and
+// floats beyond it are errors naming `name`, the value and the range.
+long long json_to_integer(const nlohmann::json& v, long long lo, long long hi, const std::string& name);
+
 class JsonObject {
 public:
     JsonObject(const nlohmann::json& j, std::string context) : j_(j), ctx_(std::move(context)) {

@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "filmgrain/error.hpp"
-#include "io/xz_file.hpp"
 #include "metadata/fgc_json.hpp"
 #include "metadata/json_access.hpp"
 
@@ -81,16 +80,7 @@ ParamsFile parse_params_json(const json& j) {
     return out;
 }
 
-ParamsFile load_params_file(const std::string& path) {
-    std::vector<uint8_t> bytes = read_whole_file(path);
-    json j;
-    try {
-        j = json::parse(bytes.begin(), bytes.end());
-    } catch (const json::parse_error& e) {
-        throw Error(ErrorCode::kInvalidParams, "parameter file '" + path + "' is not valid JSON: " + e.what());
-    }
-    return parse_params_json(j);
-}
+ParamsFile load_params_file(const std::string& path) { return parse_params_json(read_json_file(path)); }
 
 json params_file_to_json(const ParamsFile& f) {
     json frames = json::array();

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/thread_pool.hpp"
 #include "filmgrain/error.hpp"
 #include "physical/boolean_model.hpp"
 #include "physical/cell_random.hpp"
@@ -76,7 +77,7 @@ void validate(const BooleanModelParams& p) {
     check_range("min_samples", p.min_samples, 1, 1e6);
     check_range("max_samples", p.max_samples, p.min_samples, 1e6);
     check_range("grey_epsilon", p.grey_epsilon, 1e-9, 0.5);
-    check_range("threads", p.threads, 1, 256);
+    check_range("threads", p.threads, 1, kMaxThreads);
     const GrainRadiusLaw law(p.radius_mean, p.radius_sigma);
     const double grains = std::log(1.0 / p.grey_epsilon) / (3.141592653589793 * law.mean_square());
     if (grains > kMaxGrainsPerPixel) {

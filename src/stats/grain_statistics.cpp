@@ -164,6 +164,9 @@ GrainSize grain_size(const Autocovariance& c) {
 }
 
 BoundaryVariance block_boundary_variance(const FloatPlane& grain, int block) {
+    // a block needs a boundary and an interior: 2 samples at least
+    if (block < 2 || block > 4096)
+        throw Error(ErrorCode::kInvalidArgument, out_of_range_message("stats: block size", block, 2, 4096));
     BoundaryVariance r;
     r.block = block;
     const double m = mean_of(grain);
@@ -191,6 +194,9 @@ std::vector<RepetitionPeak> repetition_at_periods(const FloatPlane& grain, const
     std::vector<RepetitionPeak> out;
     const double m = mean_of(grain);
     const double c0 = lag_covariance(grain, m, 0, 0);
+    for (int p : periods)
+        if (p < 1 || p > 65536)
+            throw Error(ErrorCode::kInvalidArgument, out_of_range_message("stats: template period", p, 1, 65536));
     for (int p : periods)
         for (auto [dx, dy] : {std::pair{p, 0}, {0, p}, {p, p}}) {
             const double c = (c0 > 0 && dx < grain.width && dy < grain.height) ? lag_covariance(grain, m, dx, dy) / c0 : 0;

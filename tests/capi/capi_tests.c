@@ -4,6 +4,7 @@
  * AV1 reference slots, and concurrent contexts. Run as `filmgrain_capi_tests NAME`. */
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "capi_test_support.h"
@@ -549,6 +550,247 @@ static void test_version(void) {
     CHECK(strcmp(fg_status_name(99), "unknown fg_status") == 0);
 }
 
+/* ---- issue 24 (hardening): reproducers of undefined behaviour and unchecked values ---- */
+
+/* A minimal MSB-first bit writer for hand-made SEI payloads. */
+typedef struct bit_buffer {
+    uint8_t bytes[64];
+    int bits;
+} bit_buffer;
+
+static void put_bits(bit_buffer* b, int n, uint32_t v) {
+    for (int i = n - 1; i >= 0; i--) {
+        if ((v >> i) & 1) b->bytes[b->bits >> 3] |= (uint8_t)(0x80 >> (b->bits & 7));
+        b->bits++;
+    }
+}
+
+static void put_ue(bit_buffer* b, uint32_t v) { /* v < 2^32 - 1 */
+    const uint32_t x = v + 1;
+    int len = 0;
+    while ((x >> len) > 1) len++;
+    put_bits(b, len, 0);
+    put_bits(b, len + 1, x);
+}
+
+static void put_se(bit_buffer* b, int32_t v) {
+    put_ue(b, v > 0 ? (uint32_t)(2 * (int64_t)v - 1) : (uint32_t)(-2 * (int64_t)v));
+}
+
+/* An H.265 FGC SEI body: frequency filtering, luma only, one interval, (scale, 9, 9). */
+static size_t fgc_sei_with_scale(uint8_t* out, int32_t scale) {
+    bit_buffer b;
+    memset(&b, 0, sizeof b);
+    put_bits(&b, 1, 0); /* film_grain_characteristics_cancel_flag */
+    put_bits(&b, 2, 0); /* film_grain_model_id */
+    put_bits(&b, 1, 0); /* separate_colour_description_present_flag */
+    put_bits(&b, 2, 0); /* blending_mode_id */
+    put_bits(&b, 4, 4); /* log2_scale_factor */
+    put_bits(&b, 3, 4); /* comp_model_present_flag[0..2] = 1, 0, 0 */
+    put_bits(&b, 8, 0); /* num_intensity_intervals_minus1[0] */
+    put_bits(&b, 3, 2); /* num_model_values_minus1[0] */
+    put_bits(&b, 8, 0);
+    put_bits(&b, 8, 255);
+    put_se(&b, scale);
+    put_se(&b, 9);
+    put_se(&b, 9);
+    put_bits(&b, 1, 1); /* film_grain_characteristics_persistence_flag */
+    put_bits(&b, 1, 1); /* payload stop bit, then zeros */
+    const size_t n = (size_t)(b.bits + 7) / 8;
+    memcpy(out, b.bytes, n);
+    return n;
+}
+
+/* A negative scale factor (comp_model_value[c][i][0]) went through rdd5 and vtm with FG_OK,
+ * destroying the picture (grey 128 became mean 64.6, std 84.6). It is refused by every
+ * flavour, from SEI bytes and from JSON, naming the element, the value and the range;
+ * passthrough leaves the picture untouched. */
+static void test_negative_scale(void) {
+    const int32_t values[] = {-1, -1073741824};
+    for (int m = 0; m < 3; m++)
+        for (int k = 0; k < 2; k++)
+            for (int passthrough = 0; passthrough < 2; passthrough++)
+                for (int json = 0; json < 2; json++) {
+                    char needle[160];
+                    /* vfgs checks at set_params, before it knows the picture: the widest range */
+                    snprintf(needle, sizeof needle, "comp_model_value[0][0][0] = %ld is out of range (allowed 0..%d)",
+                             (long)values[k], m == 2 ? 65535 : 255);
+                    fg_context* ctx = make_context(kModels[m], passthrough);
+                    fg_status pushed;
+                    if (json) {
+                        char text[512];
+                        snprintf(text, sizeof text,
+                                 "{\"film_grain_model_id\": 0, \"log2_scale_factor\": 4,"
+                                 " \"comp_model_present_flag\": [1, 0, 0], \"num_intensity_intervals_minus1\": [0, 0, 0],"
+                                 " \"num_model_values_minus1\": [2, 0, 0], \"intensity_interval_lower_bound\": [[0], [], []],"
+                                 " \"intensity_interval_upper_bound\": [[255], [], []],"
+                                 " \"comp_model_value\": [[[%ld, 9, 9]], [], []]}",
+                                 (long)values[k]);
+                        pushed = fg_context_push_json(ctx, text, strlen(text), FG_CODEC_HEVC, NULL);
+                    } else {
+                        uint8_t sei[64];
+                        const size_t n = fgc_sei_with_scale(sei, values[k]);
+                        pushed = fg_context_push_fgc_sei(ctx, sei, n, FG_CODEC_HEVC, NULL);
+                    }
+                    if (pushed != FG_OK) {
+                        /* a JSON reader may refuse it already (the same check) */
+                        CHECK(json);
+                        CHECK_STATUS(ctx, pushed, FG_ERROR_INVALID_PARAMS, needle);
+                        fg_context_destroy(ctx);
+                        continue;
+                    }
+                    test_frame src, dst;
+                    frame_alloc(&src, 256, 144, 8, FG_CHROMA_420, LAYOUT_PACKED);
+                    frame_alloc(&dst, 256, 144, 8, FG_CHROMA_420, LAYOUT_PACKED);
+                    frame_fill(&src, 2);
+                    fg_frame_info info;
+                    fg_frame_info_init(&info);
+                    info.grain_applied = 7;
+                    CHECK_STATUS(ctx, fg_context_apply(ctx, &src.frame, &dst.frame, &info),
+                                 passthrough ? FG_OK : FG_ERROR_INVALID_PARAMS, needle);
+                    CHECK(info.grain_applied == 0);
+                    if (passthrough) CHECK(frames_equal(&src.frame, &dst.frame));
+                    frame_free(&src);
+                    frame_free(&dst);
+                    fg_context_destroy(ctx);
+                }
+}
+
+/* fg_context_push_json with 100000 nested arrays overflowed the stack of the host (issue 24
+ * C1): the document is refused while it is parsed, at 64 levels, naming the limit; a
+ * document over 16 MiB is refused before it is parsed. The context stays usable. */
+static void test_deep_json(void) {
+    fg_context* ctx = make_context("rdd5", 0);
+    const size_t depth = 100000, head = strlen("{\"log2_scale_factor\": ");
+    char* text = malloc(head + 2 * depth + 2);
+    CHECK(text != NULL);
+    if (!text) return;
+    memcpy(text, "{\"log2_scale_factor\": ", head);
+    memset(text + head, '[', depth);
+    memset(text + head + depth, ']', depth);
+    text[head + 2 * depth] = '}';
+    text[head + 2 * depth + 1] = 0;
+    CHECK_STATUS(ctx, fg_context_push_json(ctx, text, strlen(text), FG_CODEC_HEVC, NULL), FG_ERROR_MALFORMED_PAYLOAD,
+                 "nests JSON objects/arrays deeper than 64 levels");
+    free(text);
+    const size_t big = (16u << 20) + 1;
+    char* huge = malloc(big);
+    CHECK(huge != NULL);
+    if (huge) {
+        memset(huge, ' ', big);
+        CHECK_STATUS(ctx, fg_context_push_json(ctx, huge, big, FG_CODEC_HEVC, NULL), FG_ERROR_MALFORMED_PAYLOAD,
+                     "allowed at most 16777216");
+        free(huge);
+    }
+    push_luma_only(ctx);
+    fg_context_destroy(ctx);
+}
+
+/* strides[0] = PTRDIFF_MIN overflowed the magnitude computation (-PTRDIFF_MIN); strides whose
+ * plane would span more than PTRDIFF_MAX bytes overflowed the row addressing. Both are
+ * refused naming the field, its value and the allowed magnitudes. */
+static void test_extreme_strides(void) {
+    const ptrdiff_t strides[] = {PTRDIFF_MIN, PTRDIFF_MAX, -PTRDIFF_MAX, PTRDIFF_MAX / 2, PTRDIFF_MIN / 64};
+    for (int m = 0; m < 4; m++)
+        for (int k = 0; k < 5; k++)
+            for (int plane = 0; plane < 3; plane++) {
+                fg_context* ctx = make_context(kModels[m], 0);
+                test_frame f;
+                frame_alloc(&f, 256, 144, 10, FG_CHROMA_420, LAYOUT_PACKED);
+                frame_fill(&f, 1);
+                const ptrdiff_t saved = f.frame.strides[plane];
+                f.frame.strides[plane] = strides[k];
+                char needle[160];
+                snprintf(needle, sizeof needle, "src.strides[%d] = %td is out of range (allowed ", plane, strides[k]);
+                CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, NULL, NULL), FG_ERROR_INVALID_ARGUMENT, needle);
+                /* the same as dst */
+                test_frame d;
+                frame_alloc(&d, 256, 144, 10, FG_CHROMA_420, LAYOUT_PACKED);
+                f.frame.strides[plane] = saved;
+                d.frame.strides[plane] = strides[k];
+                snprintf(needle, sizeof needle, "dst.strides[%d] = %td is out of range (allowed ", plane, strides[k]);
+                CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, &d.frame, NULL), FG_ERROR_INVALID_ARGUMENT, needle);
+                frame_free(&d);
+                frame_free(&f);
+                fg_context_destroy(ctx);
+            }
+    /* a one-row plane never steps by its stride: any value is fine there */
+    fg_context* ctx = make_context("rdd5", 0);
+    test_frame f;
+    frame_alloc(&f, 64, 1, 8, FG_CHROMA_400, LAYOUT_PACKED);
+    frame_fill(&f, 1);
+    f.frame.strides[0] = PTRDIFF_MIN;
+    CHECK_STATUS(ctx, fg_context_apply(ctx, &f.frame, NULL, NULL), FG_OK, NULL);
+    frame_free(&f);
+    fg_context_destroy(ctx);
+}
+
+/* POC = INT32_MAX (a legal value) overflowed the seed derivation; the seed uses
+ * (POC + (idr_pic_id << 5) + colour offset) mod 256 (RDD 5, HM), so it is computed modulo
+ * 2^32: INT32_MAX gives what 255 gives, INT32_MIN what 0 gives, in rdd5 and vtm. */
+static void test_extreme_picture_ids(void) {
+    for (int m = 0; m < 2; m++) {
+        fg_context* ctx = make_context(kModels[m], 0);
+        const uint32_t p255 = grain_checksum(ctx, 255, 0, 0, 0, NULL);
+        const uint32_t p0 = grain_checksum(ctx, 0, 0, 0, 0, NULL);
+        CHECK(p255 != p0);
+        CHECK(grain_checksum(ctx, INT32_MAX, 0, 0, 0, NULL) == p255);
+        CHECK(grain_checksum(ctx, INT32_MIN, 0, 0, 0, NULL) == p0);
+        CHECK(grain_checksum(ctx, -1, 0, 0, 0, NULL) == p255);
+        /* idr_pic_id << 5 wraps as well: INT32_MAX << 5 = 0xFFFFFFE0 (rdd5; vtm ignores it) */
+        const uint32_t wrapped = grain_checksum(ctx, INT32_MAX, INT32_MAX, 0, 0, NULL);
+        CHECK(wrapped == (m == 0 ? grain_checksum(ctx, 255 + 0xE0, 0, 0, 0, NULL) : p255));
+        CHECK(grain_checksum(ctx, 0, INT32_MIN, 0, 0, NULL) == p0);
+        /* an explicit seed is the picture offset: UINT32_MAX is -1, i.e. 255 */
+        CHECK(grain_checksum(ctx, 0, 0, 1, UINT32_MAX, NULL) == p255);
+        fg_context_destroy(ctx);
+    }
+}
+
+/* 16-bit samples at odd addresses gave misaligned loads (UBSan). They are refused with
+ * FG_ERROR_INVALID_ARGUMENT naming the plane: an odd planes[p] or an odd strides[p] when
+ * bit_depth > 8. 8-bit planes may start anywhere. */
+static void test_misaligned_planes(void) {
+    for (int m = 0; m < 4; m++)
+        for (int plane = 0; plane < 3; plane++)
+            for (int what = 0; what < 4; what++) {
+                fg_context* ctx = make_context(kModels[m], 0);
+                test_frame src, dst;
+                frame_alloc(&src, 256, 144, 10, FG_CHROMA_420, LAYOUT_PADDED);
+                frame_alloc(&dst, 256, 144, 10, FG_CHROMA_420, LAYOUT_PADDED);
+                frame_fill(&src, 1);
+                test_frame* t = what < 2 ? &src : &dst;
+                char needle[96];
+                if (what % 2 == 0) {
+                    t->frame.planes[plane] = (uint8_t*)t->frame.planes[plane] + 1; /* 64 bytes of padding per row */
+                    snprintf(needle, sizeof needle, "%s.planes[%d]", what < 2 ? "src" : "dst", plane);
+                } else {
+                    t->frame.strides[plane] -= 1;
+                    snprintf(needle, sizeof needle, "%s.strides[%d]", what < 2 ? "src" : "dst", plane);
+                }
+                CHECK_STATUS(ctx, fg_context_apply(ctx, &src.frame, &dst.frame, NULL), FG_ERROR_INVALID_ARGUMENT, needle);
+                CHECK(strstr(fg_last_error(ctx), "2-byte aligned") != NULL);
+                frame_free(&src);
+                frame_free(&dst);
+                fg_context_destroy(ctx);
+            }
+    /* 8 bits: any address, any stride */
+    for (int m = 0; m < 4; m++) {
+        fg_context* ctx = make_context(kModels[m], 0);
+        test_frame src, dst;
+        frame_alloc(&src, 256, 144, 8, FG_CHROMA_420, LAYOUT_PADDED);
+        frame_alloc(&dst, 256, 144, 8, FG_CHROMA_420, LAYOUT_PADDED);
+        frame_fill(&src, 1);
+        src.frame.planes[0] = (uint8_t*)src.frame.planes[0] + 1;
+        src.frame.strides[1] -= 1;
+        dst.frame.planes[2] = (uint8_t*)dst.frame.planes[2] + 3;
+        CHECK_STATUS(ctx, fg_context_apply(ctx, &src.frame, &dst.frame, NULL), FG_OK, NULL);
+        frame_free(&src);
+        frame_free(&dst);
+        fg_context_destroy(ctx);
+    }
+}
+
 typedef struct named_test {
     const char* name;
     void (*run)(void);
@@ -567,6 +809,11 @@ static const named_test kTests[] = {
     {"afgs1_payloads", test_afgs1_payloads},
     {"afgs1_errors", test_afgs1_errors},
     {"thread_counts", test_thread_counts},
+    {"negative_scale", test_negative_scale},
+    {"extreme_strides", test_extreme_strides},
+    {"extreme_picture_ids", test_extreme_picture_ids},
+    {"misaligned_planes", test_misaligned_planes},
+    {"deep_json", test_deep_json},
 };
 
 int main(int argc, char** argv) {

@@ -1,6 +1,7 @@
 // FGC parameters: SEI payload syntax, JSON form, and validation/resolution per flavour.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "fgc/params_resolution.hpp"
@@ -49,15 +50,22 @@ FgcParams random_params(std::mt19937& rng, FgcCodec codec) {
     }
     p.blending_mode_id = r(0, 1);
     p.log2_scale_factor = r(0, 15);
-    for (auto& m : p.comp) {
+    for (int c = 0; c < 3; c++) {
+        auto& m = p.comp[c];
         m.comp_model_present_flag = r(0, 1);
         if (!m.comp_model_present_flag) continue;
         m.num_model_values_minus1 = r(0, 5);
         m.intervals.resize(r(1, 8));
+        // values up to +-5000 within what the SEI lets each one carry (the picture bit depth
+        // unknown: 16 bits unless the SEI signals its own)
+        const int bd = film_grain_bit_depth(p, c, 0);
         for (auto& iv : m.intervals) {
             iv.intensity_interval_lower_bound = r(0, 255);
             iv.intensity_interval_upper_bound = r(0, 255);
-            for (int j = 0; j <= m.num_model_values_minus1; j++) iv.comp_model_value[j] = r(-5000, 5000);
+            for (int j = 0; j <= m.num_model_values_minus1; j++) {
+                const ValueRange range = comp_model_value_range(p.film_grain_model_id, j, bd);
+                iv.comp_model_value[j] = r(int(std::max<long long>(range.lo, -5000)), int(std::min<long long>(range.hi, 5000)));
+            }
         }
     }
     if (codec == FgcCodec::kAvc) {
@@ -81,6 +89,11 @@ TEST(FgcSei, RandomRoundTripsThroughPayloadAndJson) {
             EXPECT_EQ(fgc_params_to_json(back), fgc_params_to_json(p));
             EXPECT_EQ(fgc_params_to_json(fgc_params_from_json(fgc_params_to_json(p))), fgc_params_to_json(p));
         }
+}
+
+TEST(FgcSei, RandomSetsPassTheSyntaxCheck) {
+    std::mt19937 rng(99);
+    for (int i = 0; i < 300; i++) EXPECT_NO_THROW(check_fgc_syntax_ranges(random_params(rng, FgcCodec::kHevc)));
 }
 
 TEST(FgcSei, EveryTruncationIsAnErrorNamingAField) {

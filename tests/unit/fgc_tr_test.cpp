@@ -418,10 +418,26 @@ TEST(FgcTrBitDepth, ScaleRangeFollowsTheGrainBitDepth) {
         synthesize(tr_options(), p, in);
         FAIL() << "scale 800 accepted with an 8-bit film grain bit depth";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("comp_model_value[0][0][0] = 800"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("comp_model_value[0][0][0] = 800 is out of range (allowed 0..255)"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("filmGrainBitDepth[0] = 8 from film_grain_bit_depth_luma_minus8 + 8"),
+                  std::string::npos)
+            << e.what();
+    }
+    // 1021..1023 are valid SEI values at Bg = 10 but above what the references take
+    p.film_grain_bit_depth_luma_minus8 = p.film_grain_bit_depth_chroma_minus8 = 2;
+    p.comp[0].intervals[0].comp_model_value[0] = 1023;
+    try {
+        synthesize(tr_options(), p, in);
+        FAIL() << "scale 1023 accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("comp_model_value[0][0][0] = 1023 is out of range (allowed 0..1020)"),
+                  std::string::npos)
+            << e.what();
         EXPECT_NE(std::string(e.what()).find("255 << (film grain bit depth - 8)"), std::string::npos) << e.what();
     }
-    p.film_grain_bit_depth_luma_minus8 = p.film_grain_bit_depth_chroma_minus8 = 2;
+    p.comp[0].intervals[0].comp_model_value[0] = 800;
     const double big = sd(grain(in, synthesize(tr_options(), p, in), 0));
     FgcParams q = p;
     for (auto& c : q.comp) c.intervals[0].comp_model_value[0] = 200;

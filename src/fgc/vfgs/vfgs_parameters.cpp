@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fgc/ar_template_generation.hpp"
+#include "fgc/params_resolution.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::vfgs {
@@ -24,6 +25,17 @@ std::string value_field(int c, int i, int m) {
 void check_range(const std::string& field, long long v, long long lo, long long hi,
                  ErrorCode code = ErrorCode::kInvalidParams, const std::string& why = "") {
     if (v < lo || v > hi) fail(code, out_of_range_message(field, v, lo, hi) + why);
+}
+
+// The ranges every flavour checks (fgc::check_fgc_syntax_ranges: each syntax element, and
+// comp_model_value[c][i][j] against what the SEI semantics let it carry at the picture's
+// bit depth, 0 = not known yet), with this flavour's "vfgs: " prefix.
+void check_syntax_ranges(const FgcParams& p, int picture_bit_depth) {
+    try {
+        fgc::check_fgc_syntax_ranges(p, picture_bit_depth);
+    } catch (const Error& e) {
+        fail(e.code(), e.what());
+    }
 }
 
 }  // namespace
@@ -59,6 +71,7 @@ void validate_params(const FgcParams& p, int gain_percent) {
     check_range("blending_mode_id", p.blending_mode_id, 0, 0, ErrorCode::kUnsupported,
                 " (VFGS always blends additively)");
     const int model = p.film_grain_model_id;
+    check_syntax_ranges(p, 0);
 
     // VFGS requires 2 <= L - model_id <= 7 for the value it ends up using,
     // i.e. after --gain: 2..7 for model 0, 3..8 for model 1.
@@ -91,8 +104,8 @@ void validate_params(const FgcParams& p, int gain_percent) {
                         " (the upper bound may not be below the lower bound)");
             const auto v = complete_model_values(iv.comp_model_value, cm.num_model_values_minus1 + 1, model,
                                                  p.log2_scale_factor);
-            // Scale: VFGS stores it in 8 bits; see validate_params_for_format for > 255.
-            if (v[0] < 0) fail(ErrorCode::kInvalidParams, out_of_range_message(value_field(c, i, 0), v[0], 0, 255));
+            // Scale: never negative (check_syntax_ranges); VFGS stores it in 8 bits, see
+            // validate_params_for_format for > 255.
             if (model == 0) {
                 // VFGS checks the horizontal cut-off 2..14 and the vertical one
                 // <= 14 only; negative cut-offs are rejected here as meaningless.
@@ -107,6 +120,7 @@ void validate_params(const FgcParams& p, int gain_percent) {
 
 void validate_params_for_format(const FgcParams& p, ChromaFormat format, int bit_depth) {
     if (p.film_grain_characteristics_cancel_flag) return;
+    check_syntax_ranges(p, bit_depth);
     const int rng = 1 << bit_depth;
     if (format != ChromaFormat::k420 && (p.comp[1].comp_model_present_flag || p.comp[2].comp_model_present_flag))
         fail(ErrorCode::kUnsupported,

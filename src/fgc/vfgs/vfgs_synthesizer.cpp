@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "fgc/plane_layout.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_synthesis.hpp"
@@ -94,6 +95,12 @@ void check_frame(const FrameView& src, const FrameView& dst, int out_bd) {
         bad_arg("destination frame size/format differs from the source");
     if (dst.bit_depth != out_bd)
         bad_arg("destination bit_depth = " + std::to_string(dst.bit_depth) + ", expected " + std::to_string(out_bd));
+    try {
+        fgc::check_plane_layout(src, "src");
+        fgc::check_plane_layout(dst, "dst");
+    } catch (const Error& e) {
+        bad_arg(e.what());
+    }
     for (int p = 0; p < src.plane_count(); ++p) {
         const int pw = plane_width(src.format, p, src.width), ph = plane_height(src.format, p, src.height);
         if (!src.planes[p].data || !dst.planes[p].data) bad_arg("plane " + std::to_string(p) + " has no data");
