@@ -16,8 +16,7 @@
 #include "analysis/analysis_report.hpp"
 #include "analysis/grain_analyzer.hpp"
 #include "analysis/plane_image.hpp"
-#include "av1/av1_synthesis.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "filmgrain/session.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
 #endif
@@ -210,15 +209,20 @@ int run_analyze(const AnalyzeOptions& o) {
         const auto& sample = analyzer->sample_picture();
         FrameBuffer den_fb = picture_from_planes(sample.denoised, fmt, info.width, info.height);
         FrameBuffer resynth = den_fb;
+        // the round trip: the estimated set re-synthesized on the denoised picture
+        SessionOptions so;
+        so.flavour = flavour;
+        Session session(so);
+        FrameInfo fi;
         if (fgc) {
-            FgcOptions fo;
-            fo.flavour = flavour;
-            FgcSynthesizer synth(fo);
-            synth.receive_sei(fgc_params, codec);
-            synth.apply(den_fb.view(), resynth.view(), FgcPictureIds{sample.index, 0});
+            session.receive_fgc_params(fgc_params, codec);
+            fi.ids = FgcPictureIds{sample.index, 0};
         } else {
-            av1::apply_film_grain(av1_frames.at(std::size_t(sample.index)), den_fb.view(), resynth.view(), 2);
+            Av1FilmGrainParams p = av1_frames.at(std::size_t(sample.index));
+            p.update_grain = 1;
+            session.receive_av1_params(p, 0, 2);
         }
+        session.apply(den_fb.view(), resynth.view(), &fi);
         const int crop = 256;
         rep.source = centre_crop(sample.source[0], crop);
         rep.denoised = centre_crop(sample.denoised[0], crop);

@@ -5,13 +5,11 @@
 #include <memory>
 #include <optional>
 
-#include "av1/av1_synthesis.hpp"
 #include "cli_common.hpp"
 #include "core/thread_pool.hpp"
 #include "frame_pipeline.hpp"
 #include "option_parsing.hpp"
-#include "fgc/fgc_synthesizer.hpp"
-#include "filmgrain/vfgs.hpp"
+#include "filmgrain/session.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/aom_grain_table.hpp"
 #include "payload_files.hpp"
@@ -127,6 +125,20 @@ int process_video(const ApplyOptions& o, const VideoInfo& out_override, bool ove
     return 0;
 }
 
+// Stream state and synthesis are the session's (include/filmgrain/session.hpp): the tool
+// reads files and hands each picture's metadata over as a decoder would.
+SessionOptions session_options(const ApplyOptions& o) {
+    SessionOptions so;
+    so.threads = o.threads;
+    so.clip_to_restricted_range = o.clip_to_restricted_range;
+    return so;
+}
+
+// A message of the session about picture k (passthrough, cancel, no AFGS1 payload...).
+void report(const ApplyOptions& o, int k, const ApplyResult& r) {
+    if (!r.message.empty() && !o.quiet) std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
+}
+
 int run_av1(const ApplyOptions& o) {
     std::vector<Av1FrameParams> frames;
     std::optional<AomGrainTable> table;
@@ -137,7 +149,7 @@ int run_av1(const ApplyOptions& o) {
         if (frames.empty()) throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' has no AV1 frame");
     }
     const bool single = frames.size() == 1;
-    av1::Av1Synthesizer synthesizer(o.threads);
+    Session session(session_options(o));
     return process_video(
         o, {}, false,
         [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
@@ -162,9 +174,12 @@ int run_av1(const ApplyOptions& o) {
                 if (mc < 0 && fp.color) mc = fp.color->matrix_coefficients;
             }
             if (mc < 0) mc = 2;  // unspecified
-            // filmgrn1 tables cannot carry this flag (libaom's reader leaves it 0)
-            if (o.clip_to_restricted_range >= 0) p.clip_to_restricted_range = o.clip_to_restricted_range;
-            synthesizer.apply(p, in.view(), out.view(), mc);
+            // a file's set is complete: nothing to load from a reference slot
+            p.update_grain = 1;
+            session.receive_av1_params(p, 0, mc);
+            FrameInfo fi;
+            fi.ids.poc = k;
+            report(o, k, session.apply(in.view(), out.view(), &fi));
         },
         "AV1 film grain");
 }
@@ -174,59 +189,53 @@ int run_av1(const ApplyOptions& o) {
 // without a payload gets no grain (the metadata applies to its own picture).
 int run_afgs1(const ApplyOptions& o) {
     const PayloadFiles files(o.afgs1);
-    Afgs1Reader reader;
+    Session session(session_options(o));
     return process_video(
         o, {}, false,
-        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
-            auto report = [&](const std::string& why) {
-                if (!o.quiet) std::fprintf(stderr, "filmgrain: frame %d: no grain (%s)\n", k, why.c_str());
-                av1::apply_film_grain(Av1FilmGrainParams{}, in.view(), out.view(), 2);  // copies
-            };
-            const auto bytes = files.for_picture(k);
-            if (!bytes) return report("no AFGS1 payload");
-            Afgs1Payload payload;
-            try {
-                payload = reader.receive(*bytes, afgs1_has_t35_header(bytes->data(), bytes->size()));
-            } catch (const Error& e) {
-                throw Error(e.code(), "'" + files.name_for(k) + "': " + e.what());
+        [&](int k, const VideoInfo&, FrameBuffer& in, FrameBuffer& out) {
+            if (const auto bytes = files.for_picture(k)) {
+                try {
+                    session.receive_afgs1_t35(bytes->data(), bytes->size());
+                } catch (const Error& e) {
+                    throw Error(e.code(), "'" + files.name_for(k) + "': " + e.what());
+                }
             }
-            Afgs1Picture pic;
-            pic.width = info.width;
-            pic.height = info.height;
-            pic.format = info.format.chroma;
-            pic.bit_depth = info.format.bit_depth;
-            pic.matrix_coefficients = o.matrix_coefficients;
-            const auto sel = select_afgs1_set(payload, pic);
-            if (!sel)
-                return report(payload.afgs1_enable_flag ? "no parameter set of the payload fits a " +
-                                                              std::to_string(info.width) + "x" +
-                                                              std::to_string(info.height) + " " +
-                                                              pix_fmt_name(info.format) + " picture"
-                                                        : "afgs1_enable_flag = 0");
-            Av1FilmGrainParams p = sel->params;
-            if (o.clip_to_restricted_range >= 0) p.clip_to_restricted_range = o.clip_to_restricted_range;
-            av1::apply_film_grain(p, in.view(), out.view(), sel->matrix_coefficients);
+            FrameInfo fi;
+            fi.ids.poc = k;
+            if (o.matrix_coefficients >= 0) fi.matrix_coefficients = o.matrix_coefficients;
+            report(o, k, session.apply(in.view(), out.view(), &fi));
         },
         "AFGS1 film grain");
 }
 
-int run_vfgs(const ApplyOptions& o, std::unique_ptr<FgcSource> source) {
-    vfgs::Options vo;
-    vo.seed = o.seed;
-    vo.gain_percent = o.gain;
-    vo.pattern_interpolation = o.pattern_interpolation;
-    vo.block_size = o.block_size;
-    if (o.single_line_blocks)
-        throw Error(ErrorCode::kInvalidArgument,
-                    "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
+// FGC SEI in every flavour: the source gives each picture's SEI (if any), the session
+// keeps persistence, cancel and the invalid-set policy.
+int run_fgc(const ApplyOptions& o, FgcFlavour flavour, FgcCodec codec, std::unique_ptr<FgcSource> source) {
+    SessionOptions so = session_options(o);
+    so.flavour = flavour;
+    so.persistence = o.persistence == "semantic" ? FgcPersistence::kSemantic : FgcPersistence::kReference;
+    so.block_size = o.block_size;
+    so.single_line_blocks = o.single_line_blocks;
+    so.passthrough_invalid = o.on_invalid == "passthrough";
     VideoInfo out_override;
     bool override_format = false;
-    if (!o.output_pix_fmt.empty()) {
-        out_override.format = parse_pix_fmt(o.output_pix_fmt);
-        override_format = true;
-        vo.output_bit_depth = out_override.format.bit_depth;
+    if (flavour == FgcFlavour::kVfgs) {
+        so.vfgs_seed = o.seed;
+        so.vfgs_gain_percent = o.gain;
+        so.pattern_interpolation = o.pattern_interpolation;
+        if (!o.output_pix_fmt.empty()) {
+            out_override.format = parse_pix_fmt(o.output_pix_fmt);
+            override_format = true;
+            so.vfgs_output_bit_depth = out_override.format.bit_depth;
+        }
     }
-    vfgs::Synthesizer synth(vo);
+    if (!o.coded_size.empty()) {
+        const PictureSize cs = parse_picture_size(o.coded_size, "--coded-size");
+        so.coded_width = cs.width;
+        so.coded_height = cs.height;
+    }
+    Session session(so);
+    const std::string model = "flavour " + flavour_name(flavour);
     return process_video(
         o, out_override, override_format,
         [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
@@ -234,11 +243,11 @@ int run_vfgs(const ApplyOptions& o, std::unique_ptr<FgcSource> source) {
                 throw Error(ErrorCode::kInvalidArgument, "--output-pix-fmt " + o.output_pix_fmt +
                                                              " must keep the input's chroma format (" +
                                                              pix_fmt_name(info.format) + ")");
-            FgcPictureIds ids;
-            if (auto sei = source->sei_for(k, ids)) synth.set_params(*sei);
-            synth.apply(in.view(), out.view());
+            FrameInfo fi;
+            if (auto sei = source->sei_for(k, fi.ids)) session.receive_fgc_params(*sei, codec);
+            report(o, k, session.apply(in.view(), out.view(), &fi));
         },
-        "FGC SEI, flavour vfgs");
+        model.c_str());
 }
 
 int run_apply(const ApplyOptions& o) {
@@ -262,35 +271,13 @@ int run_apply(const ApplyOptions& o) {
     } else {
         source = std::make_unique<SeiFileSource>(o.sei, codec);
     }
-    if (flavour == FgcFlavour::kVfgs) return run_vfgs(o, std::move(source));
-    if (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation)
+    if (flavour == FgcFlavour::kVfgs && o.single_line_blocks)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
+    if (flavour != FgcFlavour::kVfgs && (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation))
         throw Error(ErrorCode::kInvalidArgument,
                     "--seed, --gain, --output-pix-fmt and --pattern-interpolation belong to --flavour vfgs");
-
-    FgcOptions fo;
-    fo.flavour = flavour;
-    fo.persistence = o.persistence == "semantic" ? FgcPersistence::kSemantic : FgcPersistence::kReference;
-    fo.block_size = o.block_size;
-    fo.single_line_blocks = o.single_line_blocks;
-    if (!o.coded_size.empty()) {
-        const PictureSize cs = parse_picture_size(o.coded_size, "--coded-size");
-        fo.coded_width = cs.width;
-        fo.coded_height = cs.height;
-    }
-    fo.passthrough_invalid = o.on_invalid == "passthrough";
-    fo.threads = o.threads;
-    FgcSynthesizer synth(fo);
-    const std::string model = "flavour " + flavour_name(flavour);
-    return process_video(
-        o, {}, false,
-        [&](int k, const VideoInfo&, FrameBuffer& in, FrameBuffer& out) {
-            FgcPictureIds ids;
-            if (auto sei = source->sei_for(k, ids)) synth.receive_sei(*sei, codec);
-            FgcFrameResult r = synth.apply(in.view(), out.view(), ids);
-            if (!r.message.empty() && !o.quiet)
-                std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
-        },
-        model.c_str());
+    return run_fgc(o, flavour, codec, std::move(source));
 }
 
 }  // namespace

@@ -26,9 +26,7 @@
 #include "filmgrain/error.hpp"
 
 #ifdef FILMGRAIN_HAVE_LIBAV
-#include "av1/av1_synthesis.hpp"
-#include "fgc/fgc_synthesizer.hpp"
-#include "filmgrain/vfgs.hpp"
+#include "filmgrain/session.hpp"
 #include "libav/video_decoder.hpp"
 #endif
 
@@ -101,12 +99,12 @@ int run_decode(const DecodeOptions& o) {
     libav::VideoDecoder decoder(o.input, o.threads);
     const libav::StreamDescription& d = decoder.description();
 
-    FgcOptions fo;
-    fo.flavour = flavour;
-    fo.threads = o.threads;
-    std::unique_ptr<FgcSynthesizer> fgc;
-    std::unique_ptr<av1::Av1Synthesizer> av1_synth;
-    std::unique_ptr<vfgs::Synthesizer> vfgs_synth;
+    // FFmpeg exports each picture's grain already resolved (persistence, AV1 reference
+    // slots): every picture hands its own set to the session.
+    SessionOptions so;
+    so.flavour = flavour;
+    so.threads = o.threads;
+    Session session(so);
     std::unique_ptr<VideoWriter> writer;
     VideoInfo info;
     libav::DecodedFrame frame;
@@ -152,23 +150,18 @@ int run_decode(const DecodeOptions& o) {
             progress.frame_done(n);
             continue;
         }
+        FrameInfo fi;
         if (frame.av1) {
-            if (!av1_synth) av1_synth = std::make_unique<av1::Av1Synthesizer>(o.threads);
-            av1_synth->apply(*frame.av1, src, v, frame.matrix_coefficients);
-            with_grain++;
+            Av1FilmGrainParams p = *frame.av1;
+            p.update_grain = 1;
+            session.receive_av1_params(p, 0, frame.matrix_coefficients);
         } else {
-            if (flavour == FgcFlavour::kVfgs) {
-                if (!vfgs_synth) vfgs_synth = std::make_unique<vfgs::Synthesizer>(vfgs::Options{});
-                vfgs_synth->set_params(*frame.fgc);
-                vfgs_synth->apply(src, v);
-            } else {
-                if (!fgc) fgc = std::make_unique<FgcSynthesizer>(fo);
-                fgc->receive_sei(*frame.fgc, frame.fgc_codec);
-                const FgcPictureIds ids{int(frame.seed), 0};
-                fgc->apply(src, v, ids);
-            }
-            with_grain++;
+            session.receive_fgc_params(*frame.fgc, frame.fgc_codec);
+            // FFmpeg's seed is the RDD 5 picture offset (see the top of this file)
+            fi.ids = FgcPictureIds{int(frame.seed), 0};
         }
+        session.apply(src, v, &fi);
+        with_grain++;
         writer->write(frame.picture);
         n++;
         progress.frame_done(n);

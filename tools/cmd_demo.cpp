@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "cli_common.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "filmgrain/session.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::cli {
@@ -62,14 +62,16 @@ int run_demo() {
     info.format = fmt;
     info.y4m = true;
     VideoWriter clean_out("out/demo-clean.y4m", info, true), grain_out("out/demo-grain.y4m", info, true);
-    FgcOptions opt;
+    SessionOptions opt;
     opt.flavour = FgcFlavour::kRdd5;
-    FgcSynthesizer synth(opt);
+    Session session(opt);
     FrameBuffer in(w, h, fmt), out(w, h, fmt);
     for (int k = 0; k < frames; k++) {
         make_builtin_frame(in, k);
-        synth.receive_sei(builtin_params());
-        synth.apply(in.view(), out.view(), FgcPictureIds{k, 0});
+        session.receive_fgc_params(builtin_params(), FgcCodec::kHevc);
+        FrameInfo fi;
+        fi.ids = FgcPictureIds{k, 0};
+        session.apply(in.view(), out.view(), &fi);
         clean_out.write(in);
         grain_out.write(out);
         if (k == 0) {

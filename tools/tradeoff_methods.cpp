@@ -4,9 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "av1/av1_synthesis.hpp"
-#include "fgc/fgc_synthesizer.hpp"
-#include "filmgrain/vfgs.hpp"
+#include "filmgrain/session.hpp"
 
 namespace filmgrain::cli {
 
@@ -82,27 +80,32 @@ Av1FilmGrainParams av1_params(const TargetCovariance& target, int scaling, int s
 }
 
 FrameSynthesizer fgc_synthesizer(const FgcParams& params, FgcFlavour flavour) {
-    if (flavour == FgcFlavour::kVfgs) {
-        auto s = std::make_shared<vfgs::Synthesizer>(vfgs::Options{});
-        s->set_params(params);
-        return [s](const FrameBuffer& src, FrameBuffer& dst, int) {
-            s->apply(const_cast<FrameBuffer&>(src).view(), dst.view());
-        };
-    }
-    FgcOptions opt;
-    opt.flavour = flavour;
-    auto s = std::make_shared<FgcSynthesizer>(opt);
-    return [s, params](const FrameBuffer& src, FrameBuffer& dst, int frame) {
-        s->receive_sei(params);
-        s->apply(const_cast<FrameBuffer&>(src).view(), dst.view(), FgcPictureIds{frame, 0});
+    SessionOptions so;
+    so.flavour = flavour;
+    auto s = std::make_shared<Session>(so);
+    // vfgs keeps a set in force (its reference has no persistence rules) and its random
+    // state runs on across pictures: the set is given once. The other flavours get it with
+    // every picture, as a stream that repeats its SEI.
+    const bool once = flavour == FgcFlavour::kVfgs;
+    if (once) s->receive_fgc_params(params, FgcCodec::kHevc);
+    return [s, params, once](const FrameBuffer& src, FrameBuffer& dst, int frame) {
+        if (!once) s->receive_fgc_params(params, FgcCodec::kHevc);
+        FrameInfo fi;
+        fi.ids = FgcPictureIds{frame, 0};
+        s->apply(const_cast<FrameBuffer&>(src).view(), dst.view(), &fi);
     };
 }
 
 FrameSynthesizer av1_synthesizer(const Av1FilmGrainParams& params) {
-    return [params](const FrameBuffer& src, FrameBuffer& dst, int frame) {
+    SessionOptions so;
+    so.threads = 1;  // as the single-threaded synthesis these timings were first taken with
+    auto s = std::make_shared<Session>(so);
+    return [s, params](const FrameBuffer& src, FrameBuffer& dst, int frame) {
         Av1FilmGrainParams p = params;
         p.grain_seed = (params.grain_seed + frame * 7391) & 0xffff;
-        av1::apply_film_grain(p, const_cast<FrameBuffer&>(src).view(), dst.view(), 1);
+        p.update_grain = 1;
+        s->receive_av1_params(p, 0, 1);
+        s->apply(const_cast<FrameBuffer&>(src).view(), dst.view());
     };
 }
 

@@ -55,7 +55,9 @@ FG_API const char* fg_status_name(int status); /* fg_status -> "FG_ERROR_INVALID
 typedef enum fg_flavour {
     FG_FLAVOUR_RDD5 = 0, /* SMPTE RDD 5 / FFmpeg: seed from POC + (idr_pic_id << 5) */
     FG_FLAVOUR_VTM = 1,  /* HM/VTM reference software: POC-only seed, block size by coded size */
-    FG_FLAVOUR_VFGS = 2  /* InterDigital VersatileFilmGrain (TR 23002-9 7.5) */
+    FG_FLAVOUR_VFGS = 2, /* InterDigital VersatileFilmGrain (TR 23002-9 7.5) */
+    FG_FLAVOUR_TR = 3    /* rdd5 plus what TR 23002-9 clause 7 allows beyond the references:
+                            auto-regressive model, multiplicative blending, film grain bit depth */
 } fg_flavour;
 
 /* How an FGC SEI persists over pictures that carry none. */
@@ -93,6 +95,16 @@ typedef struct fg_options {
     int vfgs_has_seed;        /* vfgs: 1 = start the LFSR from vfgs_seed (the reference's -r) */
     uint32_t vfgs_seed;
     int vfgs_gain_percent;    /* vfgs: global grain strength in percent, default 100 */
+    /* Added in 1.1 (a caller built against 1.0 passes the smaller struct_size: defaults). */
+    int block_size;           /* FGC: 0 = the flavour's own; 8, 16 or 32 forces one (vfgs: 16) */
+    int single_line_blocks;   /* vtm, tr: TR 23002-9 7.3.2.3 single-line blocks of 8, 16 or 32
+                                 samples; 0 = square blocks */
+    int pattern_interpolation; /* vfgs: 1 = TR 23002-9 7.5.4 pattern interpolation (0: the
+                                  reference) */
+    int vfgs_output_bit_depth; /* vfgs: 0 = the input's depth; 8 rounds 10-bit output to 8 bits
+                                  (dst then has this bit_depth), the reference's --outdepth */
+    int clip_to_restricted_range; /* AV1, AFGS1: -1 (default) keeps each set's flag; 0 or 1
+                                     replaces it (libaom grain tables cannot carry it) */
 } fg_options;
 
 /* Defaults: rdd5, reference persistence, errors on invalid parameters, threads 0. */
@@ -174,6 +186,91 @@ FG_API void fg_av1_params_init(fg_av1_params* params);
  * refresh_frame_flags (AV1 7.20 reference frame update). */
 FG_API fg_status fg_context_push_av1_params(fg_context* ctx, const fg_av1_params* params,
                                             unsigned refresh_frame_flags);
+
+/* ---- typed parameter sets (1.1) ---------------------------------------------------- */
+
+/* The FGC SEI as its syntax elements (film_grain_characteristics(): H.274 8.5, H.265 D.2.20,
+ * H.264 D.1.21), for decoders that parse the SEI themselves (FFmpeg's
+ * AVFilmGrainH274Params carries the same). Per component c, intervals
+ * 0..num_intensity_intervals_minus1[c] and model values 0..num_model_values_minus1[c] are
+ * read. Values are checked as the SEI's are: at push time the syntax ranges (naming the
+ * element), at apply time against the picture and the flavour. */
+typedef struct fg_fgc_params {
+    uint32_t struct_size; /* sizeof(fg_fgc_params); set by fg_fgc_params_init */
+    int cancel_flag;      /* film_grain_characteristics_cancel_flag */
+    int model_id;         /* film_grain_model_id: 0 frequency filtering, 1 auto-regression */
+    int separate_colour_description_present_flag;
+    int bit_depth_luma_minus8, bit_depth_chroma_minus8;
+    int full_range_flag, colour_primaries, transfer_characteristics, matrix_coeffs;
+    int blending_mode_id;  /* 0 additive, 1 multiplicative */
+    int log2_scale_factor;
+    int comp_model_present_flag[3];
+    int num_intensity_intervals_minus1[3];
+    int num_model_values_minus1[3];
+    uint8_t intensity_interval_lower_bound[3][256];
+    uint8_t intensity_interval_upper_bound[3][256];
+    int32_t comp_model_value[3][256][6];
+    int persistence_flag;  /* H.265 / H.266 film_grain_characteristics_persistence_flag */
+    int repetition_period; /* H.264 film_grain_characteristics_repetition_period */
+} fg_fgc_params;
+
+/* Not cancelled, model 0, additive, no component, persistence 1, repetition period 1,
+ * colour description 2 (unspecified). */
+FG_API void fg_fgc_params_init(fg_fgc_params* params);
+
+/* Converters between the typed set and the SEI payload bytes of `codec` (FG_CODEC_*).
+ * from_sei: FG_ERROR_MALFORMED_PAYLOAD naming the syntax element. to_sei: *size is the
+ * payload's length; FG_ERROR_INVALID_ARGUMENT when capacity is smaller (then *size is the
+ * capacity needed). message may be NULL. */
+FG_API fg_status fg_fgc_params_from_sei(const uint8_t* payload, size_t size, int codec, fg_fgc_params* out,
+                                        char* message, size_t message_size);
+FG_API fg_status fg_fgc_params_to_sei(const fg_fgc_params* params, int codec, uint8_t* out, size_t capacity,
+                                      size_t* size, char* message, size_t message_size);
+
+/* As fg_context_push_fgc_sei, with the set already parsed. */
+FG_API fg_status fg_context_push_fgc_params(fg_context* ctx, const fg_fgc_params* params, int codec,
+                                            const fg_picture_ids* picture);
+
+/* AV1 film grain with the biases removed and chroma indexed [0] = Cb, [1] = Cr, as dav1d's
+ * Dav1dFilmGrainData: a resolved set (no update_grain / reference slot; a decoder that keeps
+ * the slots itself hands over what a frame uses). */
+typedef struct fg_av1_grain {
+    uint32_t struct_size; /* sizeof(fg_av1_grain); set by fg_av1_grain_init */
+    int apply_grain;
+    unsigned seed;                /* grain_seed, 0..65535 */
+    int num_y_points;             /* 0..14 */
+    uint8_t y_points[14][2];      /* point_y_value, point_y_scaling */
+    int chroma_scaling_from_luma;
+    int num_uv_points[2];         /* 0..10 */
+    uint8_t uv_points[2][10][2];  /* point_cb/cr_value, point_cb/cr_scaling */
+    int scaling_shift;            /* grain_scaling_minus_8 + 8: 8..11 */
+    int ar_coeff_lag;             /* 0..3 */
+    int ar_coeffs_y[24];          /* ar_coeffs_y_plus_128 - 128: -128..127 */
+    int ar_coeffs_uv[2][25];      /* ar_coeffs_cb/cr_plus_128 - 128 */
+    int ar_coeff_shift;           /* ar_coeff_shift_minus_6 + 6: 6..9 */
+    int grain_scale_shift;        /* 0..3 */
+    int uv_mult[2];               /* cb/cr_mult - 128: -128..127 */
+    int uv_luma_mult[2];          /* cb/cr_luma_mult - 128: -128..127 */
+    int uv_offset[2];             /* cb/cr_offset - 256: -256..255 */
+    int overlap_flag;
+    int clip_to_restricted_range;
+    int matrix_coefficients;      /* color_config(); 0 (identity) changes the restricted chroma range */
+} fg_av1_grain;
+
+/* No grain, neutral multipliers and offsets (0), shifts 8 and 6, matrix 2. */
+FG_API void fg_av1_grain_init(fg_av1_grain* grain);
+
+/* Converters between the bitstream form (fg_av1_params, with update_grain = 1: a set that
+ * loads from a reference slot has no values of its own) and the de-biased one. Values
+ * outside what the bitstream fields carry: FG_ERROR_INVALID_PARAMS naming the field. */
+FG_API fg_status fg_av1_grain_from_params(const fg_av1_params* params, fg_av1_grain* out, char* message,
+                                          size_t message_size);
+FG_API fg_status fg_av1_grain_to_params(const fg_av1_grain* grain, fg_av1_params* out, char* message,
+                                        size_t message_size);
+
+/* A resolved AV1 set for the pictures applied from now on (until replaced); the reference
+ * slots are not touched. */
+FG_API fg_status fg_context_push_av1_grain(fg_context* ctx, const fg_av1_grain* grain);
 
 /* show_existing_frame = 1: the next picture applied takes the parameters stored in
  * slot frame_to_show_map_idx (0..7). */

@@ -58,6 +58,9 @@ public:
     // and src's bit depth or Options::output_bit_depth; it may alias src when
     // the bit depths match. Throws when no parameters were set.
     void apply(const FrameView& src, const FrameView& dst);
+    // A picture without grain (no parameter set yet, or an invalid one passed through):
+    // src copied to dst, rounded to Options::output_bit_depth as the reference outputs it.
+    void pass_through(const FrameView& src, const FrameView& dst) const;
 
     // The LFSR state the next frame's first block stripe starts from.
     uint32_t lfsr_state() const;

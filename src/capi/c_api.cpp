@@ -1,21 +1,26 @@
-// The C API (include/filmgrain/filmgrain.h) over GrainContext: argument checks that C
+// The C API (include/filmgrain/filmgrain.h) over filmgrain::Session: argument checks that C
 // needs (NULL pointers, struct sizes, enum ranges), conversion of the C structs to the
 // C++ value types, and every exception turned into a status plus a message.
 #include "filmgrain/filmgrain.h"
 
+#include <algorithm>
 #include <cstring>
 #include <new>
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "core/thread_pool.hpp"
+#include "fgc/params_resolution.hpp"
 #include "fgc/plane_layout.hpp"
 #include "filmgrain/filmgrain.hpp"
+#include "metadata/fgc_sei.hpp"
 
 struct fg_context {
-    filmgrain::GrainContext grain;
+    filmgrain::Session grain;
     std::string last_error;
 
-    explicit fg_context(const filmgrain::ContextOptions& o) : grain(o) {}
+    explicit fg_context(const filmgrain::SessionOptions& o) : grain(o) {}
 };
 
 namespace {
@@ -74,10 +79,12 @@ T sized_copy(const T* in, std::size_t min_size, const T& defaults, const char* n
     return out;
 }
 
-filmgrain::ContextOptions to_options(const fg_options& o) {
-    filmgrain::ContextOptions c;
-    if (o.flavour < FG_FLAVOUR_RDD5 || o.flavour > FG_FLAVOUR_VFGS)
-        invalid(filmgrain::out_of_range_message("options.flavour", o.flavour, 0, 2));
+filmgrain::SessionOptions to_options(const fg_options& o) {
+    filmgrain::SessionOptions c;
+    if (o.flavour < FG_FLAVOUR_RDD5 || o.flavour > FG_FLAVOUR_TR)
+        invalid(filmgrain::out_of_range_message("options.flavour", o.flavour, 0, 3));
+    if (o.pattern_interpolation != 0 && o.pattern_interpolation != 1)
+        invalid(filmgrain::out_of_range_message("options.pattern_interpolation", o.pattern_interpolation, 0, 1));
     if (o.persistence < FG_PERSISTENCE_REFERENCE || o.persistence > FG_PERSISTENCE_SEMANTIC)
         invalid(filmgrain::out_of_range_message("options.persistence", o.persistence, 0, 1));
     if (o.passthrough_invalid != 0 && o.passthrough_invalid != 1)
@@ -97,7 +104,12 @@ filmgrain::ContextOptions to_options(const fg_options& o) {
     c.coded_height = o.coded_height;
     if (o.vfgs_has_seed) c.vfgs_seed = o.vfgs_seed;
     c.vfgs_gain_percent = o.vfgs_gain_percent;
-    return c;
+    c.block_size = o.block_size;
+    c.single_line_blocks = o.single_line_blocks;
+    c.pattern_interpolation = o.pattern_interpolation != 0;
+    c.vfgs_output_bit_depth = o.vfgs_output_bit_depth;
+    c.clip_to_restricted_range = o.clip_to_restricted_range;
+    return c;  // the rest (ranges, combinations) is checked by the Session, naming the field
 }
 
 filmgrain::FgcCodec to_codec(int codec) {
@@ -189,6 +201,7 @@ fg_options default_options() {
     o.flavour = FG_FLAVOUR_RDD5;
     o.persistence = FG_PERSISTENCE_REFERENCE;
     o.vfgs_gain_percent = 100;
+    o.clip_to_restricted_range = -1;
     return o;
 }
 
@@ -219,11 +232,220 @@ fg_av1_params default_av1_params() {
 }
 
 // Version 1.0 sizes: the oldest layouts the library still reads.
-constexpr std::size_t kOptionsV1Size = sizeof(fg_options);
+// 1.0 ended at vfgs_gain_percent; 1.1 added the fields from block_size on.
+constexpr std::size_t kOptionsV1Size = offsetof(fg_options, block_size);
 constexpr std::size_t kFrameInfoV1Size = sizeof(fg_frame_info);
 constexpr std::size_t kAv1ParamsV1Size = sizeof(fg_av1_params);
 
 const char* const kNullContext = "fg_context is NULL";
+
+
+// A failure's message into a caller's buffer (NUL-terminated, truncated), for the functions
+// that have no context to keep it in.
+void copy_message(const std::string& error, char* message, size_t message_size) {
+    if (!message || !message_size) return;
+    const std::size_t n = std::min(error.size(), message_size - 1);
+    std::memcpy(message, error.data(), n);
+    message[n] = '\0';
+}
+
+[[noreturn]] void invalid_params(const std::string& message) { throw Error(ErrorCode::kInvalidParams, message); }
+
+void check_in(const char* field, long long v, long long lo, long long hi) {
+    if (v < lo || v > hi) invalid_params(filmgrain::out_of_range_message(field, v, lo, hi));
+}
+
+// fg_fgc_params -> FgcParams: the counts are checked before the arrays are read, then every
+// value against its syntax range (the same check every other path to synthesis makes).
+filmgrain::FgcParams to_fgc(const fg_fgc_params& c) {
+    filmgrain::FgcParams p;
+    p.film_grain_characteristics_cancel_flag = c.cancel_flag != 0;
+    p.film_grain_model_id = c.model_id;
+    p.separate_colour_description_present_flag = c.separate_colour_description_present_flag != 0;
+    p.film_grain_bit_depth_luma_minus8 = c.bit_depth_luma_minus8;
+    p.film_grain_bit_depth_chroma_minus8 = c.bit_depth_chroma_minus8;
+    p.film_grain_full_range_flag = c.full_range_flag != 0;
+    p.film_grain_colour_primaries = c.colour_primaries;
+    p.film_grain_transfer_characteristics = c.transfer_characteristics;
+    p.film_grain_matrix_coeffs = c.matrix_coeffs;
+    p.blending_mode_id = c.blending_mode_id;
+    p.log2_scale_factor = c.log2_scale_factor;
+    p.film_grain_characteristics_persistence_flag = c.persistence_flag != 0;
+    p.film_grain_characteristics_repetition_period = c.repetition_period;
+    for (int k = 0; k < 3; k++) {
+        if (!c.comp_model_present_flag[k]) continue;
+        const std::string idx = "[" + std::to_string(k) + "]";
+        check_in(("num_intensity_intervals_minus1" + idx).c_str(), c.num_intensity_intervals_minus1[k], 0, 255);
+        check_in(("num_model_values_minus1" + idx).c_str(), c.num_model_values_minus1[k], 0, 5);
+        filmgrain::FgcComponentModel& m = p.comp[std::size_t(k)];
+        m.comp_model_present_flag = true;
+        m.num_model_values_minus1 = c.num_model_values_minus1[k];
+        m.intervals.resize(std::size_t(c.num_intensity_intervals_minus1[k]) + 1);
+        for (std::size_t i = 0; i < m.intervals.size(); i++) {
+            m.intervals[i].intensity_interval_lower_bound = c.intensity_interval_lower_bound[k][i];
+            m.intervals[i].intensity_interval_upper_bound = c.intensity_interval_upper_bound[k][i];
+            for (int j = 0; j <= m.num_model_values_minus1; j++)
+                m.intervals[i].comp_model_value[std::size_t(j)] = c.comp_model_value[k][i][j];
+        }
+    }
+    filmgrain::fgc::check_fgc_syntax_ranges(p);
+    return p;
+}
+
+fg_fgc_params default_fgc_params() {
+    fg_fgc_params c;
+    std::memset(&c, 0, sizeof c);
+    const filmgrain::FgcParams d;
+    c.struct_size = sizeof c;
+    c.colour_primaries = d.film_grain_colour_primaries;
+    c.transfer_characteristics = d.film_grain_transfer_characteristics;
+    c.matrix_coeffs = d.film_grain_matrix_coeffs;
+    c.persistence_flag = d.film_grain_characteristics_persistence_flag;
+    c.repetition_period = d.film_grain_characteristics_repetition_period;
+    return c;
+}
+
+fg_fgc_params from_fgc(const filmgrain::FgcParams& p) {
+    fg_fgc_params c = default_fgc_params();
+    c.cancel_flag = p.film_grain_characteristics_cancel_flag;
+    c.model_id = p.film_grain_model_id;
+    c.separate_colour_description_present_flag = p.separate_colour_description_present_flag;
+    c.bit_depth_luma_minus8 = p.film_grain_bit_depth_luma_minus8;
+    c.bit_depth_chroma_minus8 = p.film_grain_bit_depth_chroma_minus8;
+    c.full_range_flag = p.film_grain_full_range_flag;
+    c.colour_primaries = p.film_grain_colour_primaries;
+    c.transfer_characteristics = p.film_grain_transfer_characteristics;
+    c.matrix_coeffs = p.film_grain_matrix_coeffs;
+    c.blending_mode_id = p.blending_mode_id;
+    c.log2_scale_factor = p.log2_scale_factor;
+    c.persistence_flag = p.film_grain_characteristics_persistence_flag;
+    c.repetition_period = p.film_grain_characteristics_repetition_period;
+    for (int k = 0; k < 3; k++) {
+        const filmgrain::FgcComponentModel& m = p.comp[std::size_t(k)];
+        c.comp_model_present_flag[k] = m.comp_model_present_flag;
+        if (!m.comp_model_present_flag) continue;
+        c.num_intensity_intervals_minus1[k] = int(m.intervals.size()) - 1;  // a parsed set has 1..256
+        c.num_model_values_minus1[k] = m.num_model_values_minus1;
+        for (std::size_t i = 0; i < m.intervals.size() && i < 256; i++) {
+            c.intensity_interval_lower_bound[k][i] = uint8_t(m.intervals[i].intensity_interval_lower_bound);
+            c.intensity_interval_upper_bound[k][i] = uint8_t(m.intervals[i].intensity_interval_upper_bound);
+            for (int j = 0; j < 6; j++) c.comp_model_value[k][i][j] = m.intervals[i].comp_model_value[std::size_t(j)];
+        }
+    }
+    return c;
+}
+
+fg_av1_grain default_av1_grain() {
+    fg_av1_grain g;
+    std::memset(&g, 0, sizeof g);
+    g.struct_size = sizeof g;
+    g.scaling_shift = 8;
+    g.ar_coeff_shift = 6;
+    g.matrix_coefficients = 2;
+    return g;
+}
+
+// The de-biased form (dav1d's) -> the bitstream form; each value against what its field carries.
+filmgrain::Av1FilmGrainParams from_av1_grain(const fg_av1_grain& g) {
+    filmgrain::Av1FilmGrainParams p;
+    check_in("apply_grain", g.apply_grain, 0, 1);
+    check_in("seed", g.seed, 0, 65535);
+    check_in("num_y_points", g.num_y_points, 0, 14);
+    check_in("num_uv_points[0]", g.num_uv_points[0], 0, 10);
+    check_in("num_uv_points[1]", g.num_uv_points[1], 0, 10);
+    check_in("chroma_scaling_from_luma", g.chroma_scaling_from_luma, 0, 1);
+    check_in("scaling_shift", g.scaling_shift, 8, 11);
+    check_in("ar_coeff_lag", g.ar_coeff_lag, 0, 3);
+    check_in("ar_coeff_shift", g.ar_coeff_shift, 6, 9);
+    check_in("grain_scale_shift", g.grain_scale_shift, 0, 3);
+    check_in("overlap_flag", g.overlap_flag, 0, 1);
+    check_in("clip_to_restricted_range", g.clip_to_restricted_range, 0, 1);
+    p.apply_grain = g.apply_grain;
+    p.update_grain = 1;
+    p.grain_seed = int(g.seed);
+    p.num_y_points = g.num_y_points;
+    for (int i = 0; i < 14; i++) {
+        p.point_y_value[std::size_t(i)] = g.y_points[i][0];
+        p.point_y_scaling[std::size_t(i)] = g.y_points[i][1];
+    }
+    p.chroma_scaling_from_luma = g.chroma_scaling_from_luma;
+    p.num_cb_points = g.num_uv_points[0];
+    p.num_cr_points = g.num_uv_points[1];
+    for (int i = 0; i < 10; i++) {
+        p.point_cb_value[std::size_t(i)] = g.uv_points[0][i][0];
+        p.point_cb_scaling[std::size_t(i)] = g.uv_points[0][i][1];
+        p.point_cr_value[std::size_t(i)] = g.uv_points[1][i][0];
+        p.point_cr_scaling[std::size_t(i)] = g.uv_points[1][i][1];
+    }
+    p.grain_scaling_minus_8 = g.scaling_shift - 8;
+    p.ar_coeff_lag = g.ar_coeff_lag;
+    for (int i = 0; i < 24; i++) {
+        check_in(("ar_coeffs_y[" + std::to_string(i) + "]").c_str(), g.ar_coeffs_y[i], -128, 127);
+        p.ar_coeffs_y_plus_128[std::size_t(i)] = g.ar_coeffs_y[i] + 128;
+    }
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < 25; i++) {
+            check_in(("ar_coeffs_uv[" + std::to_string(k) + "][" + std::to_string(i) + "]").c_str(), g.ar_coeffs_uv[k][i],
+                     -128, 127);
+            (k ? p.ar_coeffs_cr_plus_128 : p.ar_coeffs_cb_plus_128)[std::size_t(i)] = g.ar_coeffs_uv[k][i] + 128;
+        }
+    p.ar_coeff_shift_minus_6 = g.ar_coeff_shift - 6;
+    p.grain_scale_shift = g.grain_scale_shift;
+    for (int k = 0; k < 2; k++) {
+        const std::string idx = "[" + std::to_string(k) + "]";
+        check_in(("uv_mult" + idx).c_str(), g.uv_mult[k], -128, 127);
+        check_in(("uv_luma_mult" + idx).c_str(), g.uv_luma_mult[k], -128, 127);
+        check_in(("uv_offset" + idx).c_str(), g.uv_offset[k], -256, 255);
+    }
+    p.cb_mult = g.uv_mult[0] + 128;
+    p.cb_luma_mult = g.uv_luma_mult[0] + 128;
+    p.cb_offset = g.uv_offset[0] + 256;
+    p.cr_mult = g.uv_mult[1] + 128;
+    p.cr_luma_mult = g.uv_luma_mult[1] + 128;
+    p.cr_offset = g.uv_offset[1] + 256;
+    p.overlap_flag = g.overlap_flag;
+    p.clip_to_restricted_range = g.clip_to_restricted_range;
+    return p;
+}
+
+fg_av1_grain to_av1_grain(const filmgrain::Av1FilmGrainParams& p, int matrix_coefficients) {
+    fg_av1_grain g = default_av1_grain();
+    g.apply_grain = p.apply_grain;
+    g.seed = unsigned(p.grain_seed);
+    g.num_y_points = p.num_y_points;
+    for (int i = 0; i < 14; i++) {
+        g.y_points[i][0] = uint8_t(p.point_y_value[std::size_t(i)]);
+        g.y_points[i][1] = uint8_t(p.point_y_scaling[std::size_t(i)]);
+    }
+    g.chroma_scaling_from_luma = p.chroma_scaling_from_luma;
+    g.num_uv_points[0] = p.num_cb_points;
+    g.num_uv_points[1] = p.num_cr_points;
+    for (int i = 0; i < 10; i++) {
+        g.uv_points[0][i][0] = uint8_t(p.point_cb_value[std::size_t(i)]);
+        g.uv_points[0][i][1] = uint8_t(p.point_cb_scaling[std::size_t(i)]);
+        g.uv_points[1][i][0] = uint8_t(p.point_cr_value[std::size_t(i)]);
+        g.uv_points[1][i][1] = uint8_t(p.point_cr_scaling[std::size_t(i)]);
+    }
+    g.scaling_shift = p.grain_scaling_minus_8 + 8;
+    g.ar_coeff_lag = p.ar_coeff_lag;
+    for (int i = 0; i < 24; i++) g.ar_coeffs_y[i] = p.ar_coeffs_y_plus_128[std::size_t(i)] - 128;
+    for (int i = 0; i < 25; i++) {
+        g.ar_coeffs_uv[0][i] = p.ar_coeffs_cb_plus_128[std::size_t(i)] - 128;
+        g.ar_coeffs_uv[1][i] = p.ar_coeffs_cr_plus_128[std::size_t(i)] - 128;
+    }
+    g.ar_coeff_shift = p.ar_coeff_shift_minus_6 + 6;
+    g.grain_scale_shift = p.grain_scale_shift;
+    g.uv_mult[0] = p.cb_mult - 128;
+    g.uv_luma_mult[0] = p.cb_luma_mult - 128;
+    g.uv_offset[0] = p.cb_offset - 256;
+    g.uv_mult[1] = p.cr_mult - 128;
+    g.uv_luma_mult[1] = p.cr_luma_mult - 128;
+    g.uv_offset[1] = p.cr_offset - 256;
+    g.overlap_flag = p.overlap_flag;
+    g.clip_to_restricted_range = p.clip_to_restricted_range;
+    g.matrix_coefficients = matrix_coefficients;
+    return g;
+}
 
 }  // namespace
 
@@ -347,3 +569,125 @@ fg_status fg_context_apply(fg_context* ctx, const fg_frame* src, const fg_frame*
 }
 
 }  // extern "C"
+
+void fg_fgc_params_init(fg_fgc_params* params) {
+    if (params) *params = default_fgc_params();
+}
+
+fg_status fg_fgc_params_from_sei(const uint8_t* payload, size_t size, int codec, fg_fgc_params* out, char* message,
+                                 size_t message_size) {
+    std::string error;
+    const fg_status st = guarded(error, [&] {
+        if (!out) invalid("out is NULL");
+        if (!payload && size) invalid("payload is NULL with size " + std::to_string(size));
+        *out = from_fgc(filmgrain::parse_fgc_sei_payload(payload, size, to_codec(codec)));
+    });
+    copy_message(error, message, message_size);
+    return st;
+}
+
+fg_status fg_fgc_params_to_sei(const fg_fgc_params* params, int codec, uint8_t* out, size_t capacity, size_t* size,
+                               char* message, size_t message_size) {
+    std::string error;
+    const fg_status st = guarded(error, [&] {
+        if (!params || !size) invalid(!params ? "params is NULL" : "size is NULL");
+        const fg_fgc_params c = sized_copy(params, sizeof(fg_fgc_params), default_fgc_params(), "params");
+        const std::vector<uint8_t> bytes = filmgrain::write_fgc_sei_payload(to_fgc(c), to_codec(codec));
+        *size = bytes.size();
+        if (capacity < bytes.size() || (!out && !bytes.empty()))
+            invalid("capacity = " + std::to_string(capacity) + " is smaller than the payload (" +
+                    std::to_string(bytes.size()) + " bytes)");
+        std::memcpy(out, bytes.data(), bytes.size());
+    });
+    copy_message(error, message, message_size);
+    return st;
+}
+
+fg_status fg_context_push_fgc_params(fg_context* ctx, const fg_fgc_params* params, int codec,
+                                     const fg_picture_ids* picture) {
+    if (!ctx) return FG_ERROR_INVALID_ARGUMENT;
+    return guarded(ctx->last_error, [&] {
+        if (!params) invalid("params is NULL");
+        const fg_fgc_params c = sized_copy(params, sizeof(fg_fgc_params), default_fgc_params(), "params");
+        ctx->grain.receive_fgc_params(to_fgc(c), to_codec(codec), to_ids(picture));
+    });
+}
+
+void fg_av1_grain_init(fg_av1_grain* grain) {
+    if (grain) *grain = default_av1_grain();
+}
+
+fg_status fg_av1_grain_from_params(const fg_av1_params* params, fg_av1_grain* out, char* message, size_t message_size) {
+    std::string error;
+    const fg_status st = guarded(error, [&] {
+        if (!params || !out) invalid(!params ? "params is NULL" : "out is NULL");
+        const fg_av1_params c = sized_copy(params, kAv1ParamsV1Size, default_av1_params(), "params");
+        const filmgrain::Av1FilmGrainParams p = to_av1(c);
+        if (p.apply_grain && !p.update_grain)
+            invalid_params("update_grain = 0: the set is in reference slot film_grain_params_ref_idx = " +
+                           std::to_string(p.film_grain_params_ref_idx) + ", not in these values (allowed: 1)");
+        // every value through the de-biased form's checks
+        const fg_av1_grain g = to_av1_grain(p, c.matrix_coefficients);
+        (void)from_av1_grain(g);
+        *out = g;
+    });
+    copy_message(error, message, message_size);
+    return st;
+}
+
+fg_status fg_av1_grain_to_params(const fg_av1_grain* grain, fg_av1_params* out, char* message, size_t message_size) {
+    std::string error;
+    const fg_status st = guarded(error, [&] {
+        if (!grain || !out) invalid(!grain ? "grain is NULL" : "out is NULL");
+        const fg_av1_grain g = sized_copy(grain, sizeof(fg_av1_grain), default_av1_grain(), "grain");
+        const filmgrain::Av1FilmGrainParams p = from_av1_grain(g);
+        fg_av1_params c = default_av1_params();
+        c.apply_grain = p.apply_grain;
+        c.grain_seed = p.grain_seed;
+        c.update_grain = 1;
+        c.num_y_points = p.num_y_points;
+        c.chroma_scaling_from_luma = p.chroma_scaling_from_luma;
+        c.num_cb_points = p.num_cb_points;
+        c.num_cr_points = p.num_cr_points;
+        for (int i = 0; i < 14; i++) {
+            c.point_y_value[i] = p.point_y_value[std::size_t(i)];
+            c.point_y_scaling[i] = p.point_y_scaling[std::size_t(i)];
+        }
+        for (int i = 0; i < 10; i++) {
+            c.point_cb_value[i] = p.point_cb_value[std::size_t(i)];
+            c.point_cb_scaling[i] = p.point_cb_scaling[std::size_t(i)];
+            c.point_cr_value[i] = p.point_cr_value[std::size_t(i)];
+            c.point_cr_scaling[i] = p.point_cr_scaling[std::size_t(i)];
+        }
+        c.grain_scaling_minus_8 = p.grain_scaling_minus_8;
+        c.ar_coeff_lag = p.ar_coeff_lag;
+        for (int i = 0; i < 24; i++) c.ar_coeffs_y_plus_128[i] = p.ar_coeffs_y_plus_128[std::size_t(i)];
+        for (int i = 0; i < 25; i++) {
+            c.ar_coeffs_cb_plus_128[i] = p.ar_coeffs_cb_plus_128[std::size_t(i)];
+            c.ar_coeffs_cr_plus_128[i] = p.ar_coeffs_cr_plus_128[std::size_t(i)];
+        }
+        c.ar_coeff_shift_minus_6 = p.ar_coeff_shift_minus_6;
+        c.grain_scale_shift = p.grain_scale_shift;
+        c.cb_mult = p.cb_mult;
+        c.cb_luma_mult = p.cb_luma_mult;
+        c.cb_offset = p.cb_offset;
+        c.cr_mult = p.cr_mult;
+        c.cr_luma_mult = p.cr_luma_mult;
+        c.cr_offset = p.cr_offset;
+        c.overlap_flag = p.overlap_flag;
+        c.clip_to_restricted_range = p.clip_to_restricted_range;
+        c.matrix_coefficients = g.matrix_coefficients;
+        *out = c;
+    });
+    copy_message(error, message, message_size);
+    return st;
+}
+
+fg_status fg_context_push_av1_grain(fg_context* ctx, const fg_av1_grain* grain) {
+    if (!ctx) return FG_ERROR_INVALID_ARGUMENT;
+    return guarded(ctx->last_error, [&] {
+        if (!grain) invalid("grain is NULL");
+        const fg_av1_grain g = sized_copy(grain, sizeof(fg_av1_grain), default_av1_grain(), "grain");
+        ctx->grain.receive_av1_params(from_av1_grain(g), 0, g.matrix_coefficients);
+    });
+}

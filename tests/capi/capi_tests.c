@@ -3,6 +3,7 @@
  * error codes with messages naming the field, SEI matching by picture ids, persistence,
  * AV1 reference slots, and concurrent contexts. Run as `filmgrain_capi_tests NAME`. */
 #include <pthread.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -686,6 +687,155 @@ static void test_deep_json(void) {
     fg_context_destroy(ctx);
 }
 
+/* fg_options 1.1: the tr flavour and the options the tool offers are reachable from C; a
+ * caller built against 1.0 passes the smaller struct_size and gets the defaults; a value
+ * outside its range is refused naming the field. tr equals rdd5 on a set both take. */
+static void test_options_v11(void) {
+    fg_options o;
+    fg_options_init(&o);
+    CHECK(o.clip_to_restricted_range == -1 && o.block_size == 0 && o.single_line_blocks == 0);
+    test_frame src, a, b;
+    frame_alloc(&src, 200, 136, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_alloc(&a, 200, 136, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_alloc(&b, 200, 136, 8, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_fill(&src, 4);
+    fg_context *rdd5 = NULL, *tr = NULL, *old = NULL;
+    o.flavour = FG_FLAVOUR_TR;
+    CHECK(fg_context_create(&o, &tr, NULL, 0) == FG_OK);
+    o.flavour = FG_FLAVOUR_RDD5;
+    o.struct_size = (uint32_t)offsetof(fg_options, block_size); /* a 1.0 caller */
+    o.block_size = 99;                                         /* past its struct: ignored */
+    CHECK(fg_context_create(&o, &old, NULL, 0) == FG_OK);
+    fg_options_init(&o);
+    CHECK(fg_context_create(&o, &rdd5, NULL, 0) == FG_OK);
+    if (tr && rdd5 && old) {
+        fg_context* const all[3] = {tr, rdd5, old};
+        test_frame* const dst[3] = {&a, &b, &b};
+        for (int i = 0; i < 3; i++) {
+            CHECK_STATUS(all[i], fg_context_push_json(all[i], kFgcJson, strlen(kFgcJson), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+            CHECK_STATUS(all[i], fg_context_apply(all[i], &src.frame, &dst[i]->frame, NULL), FG_OK, NULL);
+            if (i == 1) CHECK(frames_equal(&a.frame, &b.frame)); /* tr = rdd5 */
+            if (i == 2) CHECK(frames_equal(&a.frame, &b.frame)); /* 1.0 layout = defaults */
+        }
+    }
+    fg_context_destroy(tr);
+    fg_context_destroy(rdd5);
+    fg_context_destroy(old);
+    char message[256];
+    fg_context* bad = NULL;
+    fg_options_init(&o);
+    o.block_size = 12;
+    CHECK(fg_context_create(&o, &bad, message, sizeof message) == FG_ERROR_INVALID_ARGUMENT && bad == NULL);
+    CHECK(strstr(message, "block_size = 12") != NULL);
+    fg_options_init(&o);
+    o.flavour = 4;
+    CHECK(fg_context_create(&o, &bad, message, sizeof message) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(message, "options.flavour = 4 is out of range (allowed 0..3)") != NULL);
+    frame_free(&src);
+    frame_free(&a);
+    frame_free(&b);
+}
+
+/* Typed parameter sets (1.1): the FGC set of kFgcJson as syntax elements gives the JSON's
+ * samples, and round-trips through SEI bytes; the de-biased AV1 set gives the biased one's
+ * samples and round-trips; values outside their field are refused naming it. */
+static fg_fgc_params kfgc_as_struct(void) {
+    fg_fgc_params p;
+    fg_fgc_params_init(&p);
+    p.log2_scale_factor = 4;
+    for (int c = 0; c < 3; c++) p.comp_model_present_flag[c] = 1;
+    p.num_intensity_intervals_minus1[0] = 1;
+    p.num_model_values_minus1[0] = 2;
+    p.num_model_values_minus1[1] = 1;
+    p.intensity_interval_upper_bound[0][0] = 127;
+    p.intensity_interval_lower_bound[0][1] = 128;
+    p.intensity_interval_upper_bound[0][1] = 255;
+    p.intensity_interval_upper_bound[1][0] = 255;
+    p.intensity_interval_upper_bound[2][0] = 255;
+    const int32_t v0[2][3] = {{120, 8, 8}, {90, 10, 12}};
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 3; j++) p.comp_model_value[0][i][j] = v0[i][j];
+    p.comp_model_value[1][0][0] = 60;
+    p.comp_model_value[1][0][1] = 9;
+    p.comp_model_value[2][0][0] = 50;
+    return p;
+}
+
+static void test_typed_params(void) {
+    test_frame src, a, b;
+    frame_alloc(&src, 176, 144, 10, FG_CHROMA_420, LAYOUT_PADDED);
+    frame_alloc(&a, 176, 144, 10, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_alloc(&b, 176, 144, 10, FG_CHROMA_420, LAYOUT_PACKED);
+    frame_fill(&src, 6);
+    for (int m = 0; m < 2; m++) { /* rdd5, vtm */
+        fg_context* json = make_context(kModels[m], 0);
+        fg_context* typed = make_context(kModels[m], 0);
+        const fg_fgc_params p = kfgc_as_struct();
+        CHECK_STATUS(json, fg_context_push_json(json, kFgcJson, strlen(kFgcJson), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+        CHECK_STATUS(typed, fg_context_push_fgc_params(typed, &p, FG_CODEC_HEVC, NULL), FG_OK, NULL);
+        CHECK_STATUS(json, fg_context_apply(json, &src.frame, &a.frame, NULL), FG_OK, NULL);
+        CHECK_STATUS(typed, fg_context_apply(typed, &src.frame, &b.frame, NULL), FG_OK, NULL);
+        CHECK(frames_equal(&a.frame, &b.frame));
+        fg_context_destroy(json);
+        fg_context_destroy(typed);
+    }
+    /* SEI round trip: struct -> bytes -> struct -> the same bytes */
+    const fg_fgc_params p = kfgc_as_struct();
+    uint8_t sei[256], again[256];
+    size_t n = 0, m = 0;
+    CHECK(fg_fgc_params_to_sei(&p, FG_CODEC_HEVC, sei, sizeof sei, &n, NULL, 0) == FG_OK && n > 0);
+    fg_fgc_params q;
+    CHECK(fg_fgc_params_from_sei(sei, n, FG_CODEC_HEVC, &q, NULL, 0) == FG_OK);
+    CHECK(fg_fgc_params_to_sei(&q, FG_CODEC_HEVC, again, sizeof again, &m, NULL, 0) == FG_OK);
+    CHECK(m == n && memcmp(sei, again, n) == 0);
+    CHECK(q.comp_model_value[0][1][2] == 12 && q.intensity_interval_lower_bound[0][1] == 128);
+    char message[256];
+    size_t need = 0;
+    CHECK(fg_fgc_params_to_sei(&p, FG_CODEC_HEVC, sei, 3, &need, message, sizeof message) == FG_ERROR_INVALID_ARGUMENT);
+    CHECK(need == n && strstr(message, "capacity = 3") != NULL);
+    CHECK(fg_fgc_params_from_sei(sei, 2, FG_CODEC_HEVC, &q, message, sizeof message) == FG_ERROR_MALFORMED_PAYLOAD);
+    fg_fgc_params bad = kfgc_as_struct();
+    bad.num_intensity_intervals_minus1[1] = 300;
+    fg_context* ctx = make_context("rdd5", 0);
+    CHECK_STATUS(ctx, fg_context_push_fgc_params(ctx, &bad, FG_CODEC_HEVC, NULL), FG_ERROR_INVALID_PARAMS,
+                 "num_intensity_intervals_minus1[1] = 300 is out of range (allowed 0..255)");
+    bad = kfgc_as_struct();
+    bad.comp_model_value[0][0][0] = -5;
+    CHECK_STATUS(ctx, fg_context_push_fgc_params(ctx, &bad, FG_CODEC_HEVC, NULL), FG_ERROR_INVALID_PARAMS,
+                 "comp_model_value[0][0][0] = -5 is out of range");
+    fg_context_destroy(ctx);
+
+    /* AV1: biased -> de-biased -> the same samples, and back to the same biased values */
+    fg_av1_params biased, back;
+    av1_test_params(&biased, 1234);
+    fg_av1_grain grain;
+    CHECK(fg_av1_grain_from_params(&biased, &grain, message, sizeof message) == FG_OK);
+    CHECK(grain.seed == 1234 && grain.scaling_shift == biased.grain_scaling_minus_8 + 8);
+    CHECK(grain.ar_coeffs_y[0] == biased.ar_coeffs_y_plus_128[0] - 128);
+    CHECK(grain.uv_offset[1] == biased.cr_offset - 256);
+    CHECK(fg_av1_grain_to_params(&grain, &back, NULL, 0) == FG_OK);
+    CHECK(memcmp(back.ar_coeffs_cb_plus_128, biased.ar_coeffs_cb_plus_128, sizeof back.ar_coeffs_cb_plus_128) == 0);
+    CHECK(back.cb_mult == biased.cb_mult && back.point_y_scaling[1] == biased.point_y_scaling[1]);
+    fg_context* x = make_context("av1", 0);
+    fg_context* y = make_context("av1", 0);
+    CHECK_STATUS(x, fg_context_push_av1_params(x, &biased, 0), FG_OK, NULL);
+    CHECK_STATUS(y, fg_context_push_av1_grain(y, &grain), FG_OK, NULL);
+    CHECK_STATUS(x, fg_context_apply(x, &src.frame, &a.frame, NULL), FG_OK, NULL);
+    CHECK_STATUS(y, fg_context_apply(y, &src.frame, &b.frame, NULL), FG_OK, NULL);
+    CHECK(frames_equal(&a.frame, &b.frame));
+    grain.uv_offset[0] = 300;
+    CHECK_STATUS(y, fg_context_push_av1_grain(y, &grain), FG_ERROR_INVALID_PARAMS,
+                 "uv_offset[0] = 300 is out of range (allowed -256..255)");
+    biased.update_grain = 0;
+    CHECK(fg_av1_grain_from_params(&biased, &grain, message, sizeof message) == FG_ERROR_INVALID_PARAMS);
+    CHECK(strstr(message, "update_grain = 0") != NULL);
+    fg_context_destroy(x);
+    fg_context_destroy(y);
+    frame_free(&src);
+    frame_free(&a);
+    frame_free(&b);
+}
+
 /* strides[0] = PTRDIFF_MIN overflowed the magnitude computation (-PTRDIFF_MIN); strides whose
  * plane would span more than PTRDIFF_MAX bytes overflowed the row addressing. Both are
  * refused naming the field, its value and the allowed magnitudes. */
@@ -814,6 +964,8 @@ static const named_test kTests[] = {
     {"extreme_picture_ids", test_extreme_picture_ids},
     {"misaligned_planes", test_misaligned_planes},
     {"deep_json", test_deep_json},
+    {"options_v11", test_options_v11},
+    {"typed_params", test_typed_params},
 };
 
 int main(int argc, char** argv) {

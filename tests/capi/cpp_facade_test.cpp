@@ -1,5 +1,5 @@
 // The C++ API (filmgrain.hpp) through libfilmgrain.so: errors cross the library boundary
-// as filmgrain::Error with their code, and GrainContext gives the C API's samples.
+// as filmgrain::Error with their code, and Session gives the C API's samples.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -34,10 +34,10 @@ FrameBuffer test_picture() {
 }
 
 TEST(CppFacade, OptionErrorsAreThrownWithTheirCode) {
-    ContextOptions o;
+    SessionOptions o;
     o.threads = -2;
     try {
-        GrainContext ctx(o);
+        Session ctx(o);
         FAIL() << "no exception";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
@@ -46,7 +46,7 @@ TEST(CppFacade, OptionErrorsAreThrownWithTheirCode) {
 }
 
 TEST(CppFacade, ParameterErrorsNameTheField) {
-    GrainContext ctx;
+    Session ctx;
     try {
         ctx.receive_json(R"({"film_grain_model_id": 0, "log2_scale_factor": 40})");
         FAIL() << "no exception";
@@ -61,7 +61,7 @@ TEST(CppFacade, SameSamplesAsTheCApi) {
     FrameBuffer a = test_picture(), b = test_picture();
     const std::string clean = md5_hex(a.bytes(), a.byte_size());
 
-    GrainContext cpp;
+    Session cpp;
     cpp.receive_json(kSei);
     FrameInfo info;
     info.ids.poc = 6;
@@ -93,11 +93,11 @@ TEST(CppFacade, SameSamplesAsTheCApi) {
 
 TEST(CppFacade, MovedContextKeepsItsState) {
     FrameBuffer a = test_picture(), b = test_picture();
-    GrainContext first;
+    Session first;
     first.receive_json(kSei);
-    GrainContext moved = std::move(first);
+    Session moved = std::move(first);
     EXPECT_TRUE(moved.apply(a.view(), a.view()).grain_applied);
-    GrainContext fresh;
+    Session fresh;
     fresh.receive_json(kSei);
     fresh.apply(b.view(), b.view());
     EXPECT_EQ(md5_hex(a.bytes(), a.byte_size()), md5_hex(b.bytes(), b.byte_size()));
@@ -111,10 +111,10 @@ namespace {
 // application would read it from a file: the goldens must come out.
 void run_case_through_json(const std::string& name) {
     const filmgrain::test_support::ConformanceCase c = filmgrain::test_support::load_case(name);
-    ContextOptions o;
+    SessionOptions o;
     o.flavour = c.json.at("family") == "vtm" ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
     o.passthrough_invalid = true;
-    GrainContext ctx(o);
+    Session ctx(o);
     const bool av1 = c.json.at("family") == "av1";
     for (int k = 0; k < c.frames; k++) {
         const auto& fi = c.frame_info(k);
@@ -148,7 +148,7 @@ TEST(CppFacade, Afgs1PayloadsReproduceAv1Goldens) {
     for (const char* name : {"av1_tv01_352x288_420p10", "av1_tbl_mono_176x144_gray", "av1_tbl_352x288_422p8"}) {
         const filmgrain::test_support::ConformanceCase c = filmgrain::test_support::load_case(name);
         ASSERT_GT(c.frames, 1) << name;
-        GrainContext ctx;
+        Session ctx;
         for (int k = 0; k < c.frames; k++) {
             const std::vector<Av1FrameParams> fp = av1_frame_params_from_json(c.frame_info(k).at("params"));
             ASSERT_EQ(fp.size(), 1u);
@@ -188,7 +188,7 @@ TEST(CppFacade, Afgs1PayloadsReproduceAv1Goldens) {
 }
 
 TEST(CppFacade, DamagedAfgs1PayloadIsAnErrorNamingTheElement) {
-    GrainContext ctx;
+    Session ctx;
     const uint8_t other_provider[] = {0xB5, 0x00, 0x31, 0x01, 0x80};
     try {
         ctx.receive_afgs1_t35(other_provider, sizeof other_provider);

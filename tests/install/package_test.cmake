@@ -29,7 +29,7 @@ endif()
 get_filename_component(pc_dir ${pc_files} DIRECTORY)
 get_filename_component(libdir ${pc_dir} DIRECTORY)
 foreach(f include/filmgrain/filmgrain.h include/filmgrain/filmgrain.hpp include/filmgrain/export.h
-          include/filmgrain/frame.hpp include/filmgrain/error.hpp bin/filmgrain)
+          include/filmgrain/frame.hpp include/filmgrain/error.hpp include/filmgrain/session.hpp bin/filmgrain)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "not installed: ${f}")
   endif()

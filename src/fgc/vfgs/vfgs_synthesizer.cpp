@@ -122,6 +122,14 @@ void copy_frame(const FrameView& src, const FrameView& dst) {
 
 }  // namespace
 
+void Synthesizer::pass_through(const FrameView& src, const FrameView& dst) const {
+    const int out_bd = impl_->options.output_bit_depth ? impl_->options.output_bit_depth : src.bit_depth;
+    if (dst.bit_depth != out_bd)
+        bad_arg("destination bit_depth = " + std::to_string(dst.bit_depth) + ", expected " + std::to_string(out_bd));
+    if (dst.planes[0].data == src.planes[0].data) return;  // in place, same depth
+    copy_frame(src, dst);
+}
+
 void Synthesizer::apply(const FrameView& src, const FrameView& dst) {
     Impl& m = *impl_;
     if (!m.params) bad_arg("apply() called before set_params()");

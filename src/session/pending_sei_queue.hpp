@@ -10,7 +10,7 @@
 
 #include "filmgrain/fgc_params.hpp"
 
-namespace filmgrain::capi {
+namespace filmgrain::session {
 
 struct PendingSei {
     FgcParams params;
@@ -35,4 +35,4 @@ private:
     std::vector<PendingSei> waiting_;
 };
 
-}  // namespace filmgrain::capi
+}  // namespace filmgrain::session

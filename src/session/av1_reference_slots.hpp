@@ -7,7 +7,7 @@
 
 #include "filmgrain/av1_params.hpp"
 
-namespace filmgrain::capi {
+namespace filmgrain::session {
 
 class Av1ReferenceSlots {
 public:
@@ -27,4 +27,4 @@ private:
     std::array<std::optional<Av1FilmGrainParams>, kNumSlots> slots_;
 };
 
-}  // namespace filmgrain::capi
+}  // namespace filmgrain::session

@@ -1,10 +1,10 @@
-#include "capi/av1_reference_slots.hpp"
+#include "session/av1_reference_slots.hpp"
 
 #include <string>
 
 #include "filmgrain/error.hpp"
 
-namespace filmgrain::capi {
+namespace filmgrain::session {
 
 Av1FilmGrainParams Av1ReferenceSlots::resolve(const Av1FilmGrainParams& header) const {
     if (!header.apply_grain || header.update_grain) return header;
@@ -37,4 +37,4 @@ const Av1FilmGrainParams& Av1ReferenceSlots::at(int slot) const {
     return *slots_[std::size_t(slot)];
 }
 
-}  // namespace filmgrain::capi
+}  // namespace filmgrain::session

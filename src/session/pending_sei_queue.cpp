@@ -1,10 +1,10 @@
-#include "capi/pending_sei_queue.hpp"
+#include "session/pending_sei_queue.hpp"
 
 #include <string>
 
 #include "filmgrain/error.hpp"
 
-namespace filmgrain::capi {
+namespace filmgrain::session {
 
 void PendingSeiQueue::push(PendingSei sei) {
     if (waiting_.size() >= kCapacity)
@@ -36,4 +36,4 @@ std::optional<PendingSei> PendingSeiQueue::take_for(const FgcPictureIds& ids) {
     return take_last(without_ids);
 }
 
-}  // namespace filmgrain::capi
+}  // namespace filmgrain::session

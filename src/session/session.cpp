@@ -1,15 +1,15 @@
-// GrainContext: the per-stream state behind both public APIs. It routes metadata to the
-// model it belongs to (FgcSynthesizer for rdd5/vtm, vfgs::Synthesizer, AV1 synthesis) and
-// keeps what a decoder would otherwise have to: SEIs waiting for their output picture,
-// AV1 reference slots, the AFGS1 stored parameter sets, the picture count for callers that
-// pass no ids.
-#include "filmgrain/filmgrain.hpp"
+// Session: the per-stream state behind every entry point (include/filmgrain/session.hpp).
+// It routes metadata to the model it belongs to (FgcSynthesizer for rdd5/vtm/tr,
+// vfgs::Synthesizer, AV1 synthesis) and keeps what a decoder would otherwise have to: SEIs
+// waiting for their output picture, AV1 reference slots, the AFGS1 stored parameter sets,
+// the picture count for callers that pass no ids.
+#include "filmgrain/session.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "av1/av1_synthesis.hpp"
-#include "capi/av1_reference_slots.hpp"
-#include "capi/pending_sei_queue.hpp"
+#include "session/av1_reference_slots.hpp"
+#include "session/pending_sei_queue.hpp"
 #include "core/thread_pool.hpp"
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
@@ -25,9 +25,9 @@ namespace filmgrain {
 
 namespace {
 
-void check_options(const ContextOptions& o) {
+void check_options(const SessionOptions& o) {
     const int flavour = static_cast<int>(o.flavour), persistence = static_cast<int>(o.persistence);
-    if (flavour < 0 || flavour > 2) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("flavour", flavour, 0, 2));
+    if (flavour < 0 || flavour > 3) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("flavour", flavour, 0, 3));
     if (persistence < 0 || persistence > 1)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("persistence", persistence, 0, 1));
     if (o.threads < 0 || o.threads > kMaxThreads)
@@ -38,6 +38,28 @@ void check_options(const ContextOptions& o) {
                                          o.coded_width < 0 ? o.coded_width : o.coded_height, 0, INT32_MAX));
     if (o.vfgs_gain_percent < 0)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("vfgs_gain_percent", o.vfgs_gain_percent, 0, INT32_MAX));
+    if (o.block_size != 0 && o.block_size != 8 && o.block_size != 16 && o.block_size != 32)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "block_size = " + std::to_string(o.block_size) + " is not a block size (allowed 0, 8, 16, 32)");
+    if (o.single_line_blocks != 0 && o.single_line_blocks != 8 && o.single_line_blocks != 16 &&
+        o.single_line_blocks != 32)
+        throw Error(ErrorCode::kInvalidArgument, "single_line_blocks = " + std::to_string(o.single_line_blocks) +
+                                                     " is not a segment length (allowed 0, 8, 16, 32)");
+    if (o.clip_to_restricted_range < -1 || o.clip_to_restricted_range > 1)
+        throw Error(ErrorCode::kInvalidArgument,
+                    out_of_range_message("clip_to_restricted_range", o.clip_to_restricted_range, -1, 1));
+    const bool vfgs = o.flavour == FgcFlavour::kVfgs;
+    if (vfgs && o.single_line_blocks)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "single_line_blocks is an option of the vtm and tr flavours (VFGS adapts per sample)");
+    if (!vfgs && (o.vfgs_seed || o.vfgs_gain_percent != 100 || o.vfgs_output_bit_depth || o.pattern_interpolation))
+        throw Error(ErrorCode::kInvalidArgument,
+                    "vfgs_seed, vfgs_gain_percent, vfgs_output_bit_depth and pattern_interpolation belong to the "
+                    "vfgs flavour");
+    if (o.vfgs_output_bit_depth != 0 && (o.vfgs_output_bit_depth < 8 || o.vfgs_output_bit_depth > 16))
+        throw Error(ErrorCode::kInvalidArgument,
+                    "vfgs_output_bit_depth = " + std::to_string(o.vfgs_output_bit_depth) +
+                        " is out of range (allowed 0, the input's depth, or 8..16)");
 }
 
 void check_codec(FgcCodec codec) {
@@ -50,16 +72,19 @@ void copy_frame(const FrameView& src, const FrameView& dst) {
     for (int c = 0; c < src.plane_count(); c++) fgc::copy_plane(src.planes[c], dst.planes[c], src.bytes_per_sample());
 }
 
-void check_views(const FrameView& src, const FrameView& dst) {
+void check_views(const FrameView& src, const FrameView& dst, int dst_bit_depth) {
     // First: the strides' range (an |stride| the AV1 check would compute from PTRDIFF_MIN
     // overflows) and 2-byte alignment of 16-bit samples, for every model.
     fgc::check_plane_layout(src, "src");
     fgc::check_plane_layout(dst, "dst");
     av1::check_frame_view(src, "src");
     av1::check_frame_view(dst, "dst");
-    if (src.format != dst.format || src.bit_depth != dst.bit_depth || src.width != dst.width ||
-        src.height != dst.height)
-        throw Error(ErrorCode::kInvalidArgument, "dst differs from src in size, bit depth or chroma format");
+    if (src.format != dst.format || src.width != dst.width || src.height != dst.height)
+        throw Error(ErrorCode::kInvalidArgument, "dst differs from src in size or chroma format");
+    if (dst.bit_depth != dst_bit_depth)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "dst.bit_depth = " + std::to_string(dst.bit_depth) + ", expected " + std::to_string(dst_bit_depth) +
+                        (dst_bit_depth == src.bit_depth ? " (the source's)" : " (vfgs_output_bit_depth)"));
 }
 
 // Only parameter-set problems pass through; caller errors (views, sizes) always fail.
@@ -69,21 +94,21 @@ bool is_parameter_problem(ErrorCode code) {
 
 }  // namespace
 
-struct GrainContext::Impl {
+struct Session::Impl {
     enum class Model { kNone, kFgc, kAv1, kAfgs1 };
 
-    ContextOptions options;
+    SessionOptions options;
     Model model = Model::kNone;
     int pictures_applied = 0;
 
     // FGC SEI: rdd5 / vtm through FgcSynthesizer, vfgs through its own synthesizer.
-    capi::PendingSeiQueue pending;
+    session::PendingSeiQueue pending;
     std::unique_ptr<FgcSynthesizer> fgc;
     std::unique_ptr<vfgs::Synthesizer> vfgs;
     std::string vfgs_invalid;  // why the vfgs parameter set in force cannot be used
 
     // AV1
-    capi::Av1ReferenceSlots slots;
+    session::Av1ReferenceSlots slots;
     std::optional<Av1FilmGrainParams> av1;
     int av1_matrix_coefficients = 2;
     // Made on first use: an FGC-only context starts no AV1 worker threads.
@@ -94,13 +119,16 @@ struct GrainContext::Impl {
     Afgs1Reader afgs1_reader;
     std::optional<Afgs1Payload> afgs1_pending;
 
-    explicit Impl(const ContextOptions& o) : options(o) { make_synthesizers(); }
+    explicit Impl(const SessionOptions& o) : options(o) { make_synthesizers(); }
 
     void make_synthesizers() {
         if (options.flavour == FgcFlavour::kVfgs) {
             vfgs::Options vo;
             vo.seed = options.vfgs_seed;
             vo.gain_percent = options.vfgs_gain_percent;
+            vo.output_bit_depth = options.vfgs_output_bit_depth;
+            vo.pattern_interpolation = options.pattern_interpolation;
+            vo.block_size = options.block_size;
             vfgs = std::make_unique<vfgs::Synthesizer>(vo);
         } else {
             FgcOptions fo;
@@ -110,13 +138,16 @@ struct GrainContext::Impl {
             fo.coded_height = options.coded_height;
             fo.passthrough_invalid = options.passthrough_invalid;
             fo.threads = options.threads;
+            fo.block_size = options.block_size;
+            fo.single_line_blocks = options.single_line_blocks;
+            fo.reference_kernels = options.reference_kernels;
             fgc = std::make_unique<FgcSynthesizer>(fo);
         }
         vfgs_invalid.clear();
     }
 
     ApplyResult apply_fgc(const FrameView& src, const FrameView& dst, const FrameInfo& info) {
-        std::optional<capi::PendingSei> sei = pending.take_for(info.ids);
+        std::optional<session::PendingSei> sei = pending.take_for(info.ids);
         ApplyResult r;
         if (fgc) {
             if (sei) fgc->receive_sei(sei->params, sei->codec);
@@ -148,11 +179,11 @@ struct GrainContext::Impl {
             }
         }
         if (!vfgs_has_params) {
-            copy_frame(src, dst);
+            vfgs->pass_through(src, dst);
             return r;
         }
         if (!vfgs_invalid.empty()) {
-            copy_frame(src, dst);
+            vfgs->pass_through(src, dst);
             r.message = "film grain not applied: " + vfgs_invalid;
             return r;
         }
@@ -160,7 +191,7 @@ struct GrainContext::Impl {
             vfgs->apply(src, dst);
         } catch (const Error& e) {
             if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
-            copy_frame(src, dst);
+            vfgs->pass_through(src, dst);
             r.message = std::string("film grain not applied: ") + e.what();
             return r;
         }
@@ -180,7 +211,11 @@ struct GrainContext::Impl {
                                  const FrameView& dst, const FrameInfo& info) {
         ApplyResult r;
         if (info.seed) p.grain_seed = static_cast<int>(*info.seed & 0xFFFF);
-        if (!av1_synthesizer) av1_synthesizer = std::make_unique<av1::Av1Synthesizer>(options.threads);
+        if (options.clip_to_restricted_range >= 0) p.clip_to_restricted_range = options.clip_to_restricted_range;
+        if (info.matrix_coefficients) matrix_coefficients = *info.matrix_coefficients;
+        if (!av1_synthesizer)
+            av1_synthesizer = std::make_unique<av1::Av1Synthesizer>(
+                options.threads, options.reference_kernels ? av1::Kernels::kReference : av1::Kernels::kOptimized);
         try {
             av1_synthesizer->apply(p, src, dst, matrix_coefficients);
         } catch (const Error& e) {
@@ -211,6 +246,7 @@ struct GrainContext::Impl {
         pic.height = src.height;
         pic.format = src.format;
         pic.bit_depth = src.bit_depth;
+        if (info.matrix_coefficients) pic.matrix_coefficients = *info.matrix_coefficients;
         const std::optional<Afgs1Selection> sel = select_afgs1_set(payload, pic);
         if (!sel) {
             copy_frame(src, dst);
@@ -221,7 +257,10 @@ struct GrainContext::Impl {
                             : "film grain not applied: afgs1_enable_flag = 0";
             return r;
         }
-        ApplyResult applied = apply_av1_params(sel->params, sel->matrix_coefficients, src, dst, info);
+        // the selection already weighed the picture's matrix_coefficients against the set's
+        FrameInfo selected = info;
+        selected.matrix_coefficients.reset();
+        ApplyResult applied = apply_av1_params(sel->params, sel->matrix_coefficients, src, dst, selected);
         if (!sel->params.apply_grain && applied.message.empty())
             applied.message = "film grain not applied: the selected AFGS1 set (film_grain_param_set_idx " +
                               std::to_string(payload.sets[sel->set_index].film_grain_param_set_idx) +
@@ -240,30 +279,30 @@ struct GrainContext::Impl {
     }
 };
 
-GrainContext::GrainContext(const ContextOptions& options) {
+Session::Session(const SessionOptions& options) {
     check_options(options);
     impl_ = std::make_unique<Impl>(options);
 }
-GrainContext::~GrainContext() = default;
-GrainContext::GrainContext(GrainContext&&) noexcept = default;
-GrainContext& GrainContext::operator=(GrainContext&&) noexcept = default;
+Session::~Session() = default;
+Session::Session(Session&&) noexcept = default;
+Session& Session::operator=(Session&&) noexcept = default;
 
-const ContextOptions& GrainContext::options() const { return impl_->options; }
+const SessionOptions& Session::options() const { return impl_->options; }
 
-void GrainContext::receive_fgc_params(const FgcParams& params, FgcCodec codec, std::optional<FgcPictureIds> picture) {
+void Session::receive_fgc_params(const FgcParams& params, FgcCodec codec, std::optional<FgcPictureIds> picture) {
     check_codec(codec);
     impl_->pending.push({params, codec, picture});
     impl_->model = Impl::Model::kFgc;
 }
 
-void GrainContext::receive_fgc_sei_payload(const uint8_t* payload, std::size_t size, FgcCodec codec,
+void Session::receive_fgc_sei_payload(const uint8_t* payload, std::size_t size, FgcCodec codec,
                                            std::optional<FgcPictureIds> picture) {
     check_codec(codec);
     if (!payload && size) throw Error(ErrorCode::kInvalidArgument, "payload is NULL with size " + std::to_string(size));
     receive_fgc_params(parse_fgc_sei_payload(payload, size, codec), codec, picture);
 }
 
-void GrainContext::receive_av1_params(const Av1FilmGrainParams& params, unsigned refresh_frame_flags,
+void Session::receive_av1_params(const Av1FilmGrainParams& params, unsigned refresh_frame_flags,
                                       int matrix_coefficients) {
     if (refresh_frame_flags > 0xFF)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("refresh_frame_flags", refresh_frame_flags, 0, 255));
@@ -276,12 +315,12 @@ void GrainContext::receive_av1_params(const Av1FilmGrainParams& params, unsigned
     impl_->model = Impl::Model::kAv1;
 }
 
-void GrainContext::show_existing_av1_frame(int frame_to_show_map_idx) {
+void Session::show_existing_av1_frame(int frame_to_show_map_idx) {
     impl_->av1 = impl_->slots.at(frame_to_show_map_idx);
     impl_->model = Impl::Model::kAv1;
 }
 
-void GrainContext::receive_afgs1_t35(const uint8_t* payload, std::size_t size) {
+void Session::receive_afgs1_t35(const uint8_t* payload, std::size_t size) {
     if (!payload && size) throw Error(ErrorCode::kInvalidArgument, "payload is NULL with size " + std::to_string(size));
     if (!payload || size == 0)
         throw Error(ErrorCode::kMalformedPayload, "AFGS1 payload: empty (0 bytes; at least 1 is needed)");
@@ -294,7 +333,7 @@ void GrainContext::receive_afgs1_t35(const uint8_t* payload, std::size_t size) {
     impl_->model = Impl::Model::kAfgs1;
 }
 
-void GrainContext::receive_json(std::string_view text, FgcCodec codec, std::optional<FgcPictureIds> picture) {
+void Session::receive_json(std::string_view text, FgcCodec codec, std::optional<FgcPictureIds> picture) {
     // Bounded in size and nesting depth (json_access.hpp): a hostile document must not
     // overflow the host decoder's stack.
     const nlohmann::json j =
@@ -314,7 +353,7 @@ void GrainContext::receive_json(std::string_view text, FgcCodec codec, std::opti
     receive_av1_params(a.grain, 0, a.color ? a.color->matrix_coefficients : 2);
 }
 
-void GrainContext::reset() {
+void Session::reset() {
     Impl& s = *impl_;
     s.pending.clear();
     s.slots.clear();
@@ -328,12 +367,15 @@ void GrainContext::reset() {
     s.make_synthesizers();
 }
 
-ApplyResult GrainContext::apply(const FrameView& src, const FrameView& dst, const FrameInfo* info) {
+ApplyResult Session::apply(const FrameView& src, const FrameView& dst, const FrameInfo* info) {
     Impl& s = *impl_;
     FrameInfo fi;
     if (info) fi = *info;
     else fi.ids.poc = s.pictures_applied;
-    check_views(src, dst);
+    const int dst_bit_depth = s.options.flavour == FgcFlavour::kVfgs && s.options.vfgs_output_bit_depth
+                                  ? s.options.vfgs_output_bit_depth
+                                  : src.bit_depth;
+    check_views(src, dst, dst_bit_depth);
     ApplyResult r;
     switch (s.model) {
     case Impl::Model::kNone: copy_frame(src, dst); break;
