@@ -7,7 +7,10 @@
  *                                                  header grain de-biased (fg_av1_grain, as
  *                                                  dav1d holds it) and an AFGS1 T.35 payload
  *   decoder_hook IN.yuv WIDTH HEIGHT OUT.yuv [P]   grain on an 8-bit yuv420p file, with the
- *                                                  typed FGC set, or that of JSON file P
+ *                                                  typed FGC set, or the FGC SEI payload in
+ *                                                  file P (H.265 payloadType 19 body, as
+ *                                                  `filmgrain params convert x.json -o P.bin
+ *                                                  --to sei` writes it)
  *
  * Prints one line per picture (samples changed, a checksum of the output) and exits
  * non-zero on any error. */
@@ -65,7 +68,7 @@ static const uint8_t kAfgs1Payload[] = {0xb5, 0x58, 0x90, 0x01, 0x80, 0x08, 0x88
 enum { MODEL_FGC, MODEL_AV1, MODEL_AFGS1 };
 static const char* const kModelNames[] = {"FGC SEI (fg_fgc_params)", "AV1 (fg_av1_grain)", "AFGS1 T.35"};
 
-static char* read_text(const char* path, size_t* length) {
+static char* read_file(const char* path, size_t* length) {
     FILE* f = fopen(path, "rb");
     if (!f) return NULL;
     char* text = NULL;
@@ -127,7 +130,7 @@ static uint32_t checksum(const uint8_t* b, size_t n) {
 
 /* One stream: `frames` pictures (from `fin`, or generated when it is NULL) through a context
  * that gets its metadata the way `model` arrives. Returns 0 when every picture got grain. */
-static int run_stream(int model, const char* json_params, size_t json_length, int width, int height, FILE* fin,
+static int run_stream(int model, const uint8_t* sei, size_t sei_length, int width, int height, FILE* fin,
                       FILE* fout, int frames) {
     fg_options options;
     fg_options_init(&options);
@@ -156,8 +159,8 @@ static int run_stream(int model, const char* json_params, size_t json_length, in
          * the AV1 set stays until replaced; an AFGS1 payload is for its own picture. */
         fg_status pushed = FG_OK;
         if (model == MODEL_FGC && k == 0) {
-            if (json_params) {
-                pushed = fg_context_push_json(ctx, json_params, json_length, FG_CODEC_HEVC, NULL);
+            if (sei) {
+                pushed = fg_context_push_fgc_sei(ctx, sei, sei_length, FG_CODEC_HEVC, NULL);
             } else {
                 static fg_fgc_params p; /* 18 KB: not on the stack */
                 fgc_params(&p);
@@ -202,7 +205,7 @@ static int run_stream(int model, const char* json_params, size_t json_length, in
 
 int main(int argc, char** argv) {
     if (argc != 1 && argc != 5 && argc != 6) {
-        fprintf(stderr, "usage: %s [IN.yuv WIDTH HEIGHT OUT.yuv [params.json]]\n", argv[0]);
+        fprintf(stderr, "usage: %s [IN.yuv WIDTH HEIGHT OUT.yuv [sei_payload.bin]]\n", argv[0]);
         return 2;
     }
     if (argc == 1) {
@@ -213,7 +216,7 @@ int main(int argc, char** argv) {
     }
     size_t params_length = 0;
     char* params = NULL;
-    if (argc == 6 && !(params = read_text(argv[5], &params_length))) {
+    if (argc == 6 && !(params = read_file(argv[5], &params_length))) {
         fprintf(stderr, "decoder_hook: cannot read %s\n", argv[5]);
         return 1;
     }
@@ -223,7 +226,7 @@ int main(int argc, char** argv) {
         fprintf(stderr, "decoder_hook: cannot open %s or %s\n", argv[1], argv[4]);
         return 1;
     }
-    int status = run_stream(MODEL_FGC, params, params_length, atoi(argv[2]), atoi(argv[3]), fin, fout, 0);
+    int status = run_stream(MODEL_FGC, (const uint8_t*)params, params_length, atoi(argv[2]), atoi(argv[3]), fin, fout, 0);
     free(params);
     fclose(fin);
     if (fclose(fout) != 0) status = 1;

@@ -48,6 +48,11 @@ struct Av1FilmGrainParams {
     int overlap_flag = 0;
     int clip_to_restricted_range = 0;
 
+    // AV1 film_grain_params() does not signal num_cb_points / num_cr_points for 4:2:0 without
+    // luma points (they are inferred 0); AFGS1 av1_film_grain_params() signals them, and such
+    // a set may carry chroma points (AFGS1 text, FFmpeg 7.1). true: the counts were signalled.
+    bool chroma_point_counts_signalled = false;
+
     Av1FilmGrainParams() {
         ar_coeffs_y_plus_128.fill(128);
         ar_coeffs_cb_plus_128.fill(128);

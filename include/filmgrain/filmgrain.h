@@ -30,13 +30,13 @@ extern "C" {
 
 /* Version of this header. The library's own is fg_version(); the ABI (SONAME) changes only
  * with the major number. */
-#define FG_VERSION_MAJOR 1
+#define FG_VERSION_MAJOR 2
 #define FG_VERSION_MINOR 0
 #define FG_VERSION_PATCH 0
 #define FG_VERSION ((FG_VERSION_MAJOR << 16) | (FG_VERSION_MINOR << 8) | FG_VERSION_PATCH)
 
 FG_API unsigned fg_version(void);            /* FG_VERSION of the library */
-FG_API const char* fg_version_string(void);  /* "1.0.0" */
+FG_API const char* fg_version_string(void);  /* "2.0.0" */
 
 typedef enum fg_status {
     FG_OK = 0,
@@ -95,7 +95,8 @@ typedef struct fg_options {
     int vfgs_has_seed;        /* vfgs: 1 = start the LFSR from vfgs_seed (the reference's -r) */
     uint32_t vfgs_seed;
     int vfgs_gain_percent;    /* vfgs: global grain strength in percent, default 100 */
-    /* Added in 1.1 (a caller built against 1.0 passes the smaller struct_size: defaults). */
+    /* Added in 2.0; a caller with the 1.0 layout passes its smaller struct_size and gets the
+       defaults for these. */
     int block_size;           /* FGC: 0 = the flavour's own; 8, 16 or 32 forces one (vfgs: 16) */
     int single_line_blocks;   /* vtm, tr: TR 23002-9 7.3.2.3 single-line blocks of 8, 16 or 32
                                  samples; 0 = square blocks */
@@ -187,7 +188,7 @@ FG_API void fg_av1_params_init(fg_av1_params* params);
 FG_API fg_status fg_context_push_av1_params(fg_context* ctx, const fg_av1_params* params,
                                             unsigned refresh_frame_flags);
 
-/* ---- typed parameter sets (1.1) ---------------------------------------------------- */
+/* ---- typed parameter sets (2.0) ---------------------------------------------------- */
 
 /* The FGC SEI as its syntax elements (film_grain_characteristics(): H.274 8.5, H.265 D.2.20,
  * H.264 D.1.21), for decoders that parse the SEI themselves (FFmpeg's
@@ -300,13 +301,9 @@ FG_API fg_status fg_context_show_existing_av1_frame(fg_context* ctx, int frame_t
  * the stored sets and any payload already waiting are then unchanged. */
 FG_API fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* payload, size_t size);
 
-/* One parameter set in the project's JSON form (see README "Parameter files"): an FGC SEI
- * object or {"fgc": {...}} (taken as an SEI arriving with `picture`, see push_fgc_sei, with
- * the given codec), or an AV1 film_grain_params object or {"av1": {...}} (as
- * push_av1_params with refresh_frame_flags 0). Per-frame files ({"frames": [...]}) are
- * refused: push each frame's entry. */
-FG_API fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, int codec,
-                                      const fg_picture_ids* picture);
+/* (fg_context_push_json of 1.0 is gone: JSON is the tool's form, not a decoder's. A decoder
+ * hands over SEI bytes, T.35 payloads or the typed sets above; `filmgrain params convert`
+ * turns a JSON file into SEI or AFGS1 payload bytes.) */
 
 /* A new coded video sequence, or a seek: forgets waiting SEIs, the parameters in force
  * and the AV1 reference slots; picture counting restarts at 0. */

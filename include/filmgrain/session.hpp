@@ -98,9 +98,6 @@ public:
     // (filmgrain.h) describes. Throws Error(kMalformedPayload) naming the syntax element;
     // the session's stored sets are then unchanged.
     void receive_afgs1_t35(const uint8_t* payload, std::size_t size);
-    // One FGC or AV1 parameter set in the project's JSON form.
-    void receive_json(std::string_view json, FgcCodec codec = FgcCodec::kHevc,
-                      std::optional<FgcPictureIds> picture = std::nullopt);
     void reset();
 
     // dst may be src. info nullptr: POC counts pictures from 0, idr_pic_id 0.

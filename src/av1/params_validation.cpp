@@ -68,7 +68,8 @@ void validate_params(const Av1FilmGrainParams& p, ChromaFormat format, int bit_d
     const char* why = "";
     if (mono) why = " (monochrome frame)";
     else if (p.chroma_scaling_from_luma) why = " (chroma_scaling_from_luma = 1)";
-    else if (is420 && p.num_y_points == 0) why = " (4:2:0 with num_y_points = 0)";
+    else if (is420 && p.num_y_points == 0 && !p.chroma_point_counts_signalled)
+        why = " (4:2:0 with num_y_points = 0)";  // AV1 infers them 0 there; AFGS1 signals them
     const int max_chroma_points = *why ? 0 : 10;
     check_range([&] { return std::string("num_cb_points") + why; }, p.num_cb_points, 0, max_chroma_points);
     check_range([&] { return std::string("num_cr_points") + why; }, p.num_cr_points, 0, max_chroma_points);

@@ -232,7 +232,7 @@ fg_av1_params default_av1_params() {
 }
 
 // Version 1.0 sizes: the oldest layouts the library still reads.
-// 1.0 ended at vfgs_gain_percent; 1.1 added the fields from block_size on.
+// 1.0 ended at vfgs_gain_percent; 2.0 added the fields from block_size on.
 constexpr std::size_t kOptionsV1Size = offsetof(fg_options, block_size);
 constexpr std::size_t kFrameInfoV1Size = sizeof(fg_frame_info);
 constexpr std::size_t kAv1ParamsV1Size = sizeof(fg_av1_params);
@@ -453,7 +453,7 @@ extern "C" {
 
 unsigned fg_version(void) { return FG_VERSION; }
 
-const char* fg_version_string(void) { return "1.0.0"; }
+const char* fg_version_string(void) { return "2.0.0"; }
 
 const char* fg_status_name(int status) {
     switch (status) {
@@ -535,14 +535,6 @@ fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* payload, siz
     });
 }
 
-fg_status fg_context_push_json(fg_context* ctx, const char* json, size_t length, int codec,
-                               const fg_picture_ids* picture) {
-    if (!ctx) return FG_ERROR_INVALID_ARGUMENT;
-    return guarded(ctx->last_error, [&] {
-        if (!json) invalid("json is NULL");
-        ctx->grain.receive_json(std::string_view(json, length), to_codec(codec), to_ids(picture));
-    });
-}
 
 fg_status fg_context_reset(fg_context* ctx) {
     if (!ctx) return FG_ERROR_INVALID_ARGUMENT;

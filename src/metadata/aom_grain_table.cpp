@@ -2,11 +2,8 @@
 
 #include <charconv>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "filmgrain/error.hpp"
-#include "io/input_file.hpp"
 
 namespace filmgrain {
 namespace {
@@ -197,16 +194,6 @@ AomGrainTable parse_aom_grain_table(std::string_view text) {
     return table;
 }
 
-AomGrainTable read_aom_grain_table(const std::string& path) {
-    // bounded: a device such as /dev/zero or a huge file fails fast instead of filling memory
-    const std::vector<uint8_t> bytes = read_whole_file(path, kDefaultMaxFileBytes, "a libaom grain table");
-    try {
-        return parse_aom_grain_table(std::string(bytes.begin(), bytes.end()));
-    } catch (const Error& e) {
-        throw Error(e.code(), path + ": " + e.what());
-    }
-}
-
 std::string format_aom_grain_table(const AomGrainTable& table) {
     std::string out = "filmgrn1\n";
     auto add = [&out](const std::string& s) { out += s; };
@@ -242,14 +229,6 @@ std::string format_aom_grain_table(const AomGrainTable& table) {
         add("\n");
     }
     return out;
-}
-
-void write_aom_grain_table(const AomGrainTable& table, const std::string& path) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out) throw Error(ErrorCode::kIo, "cannot open grain table '" + path + "' for writing");
-    const std::string text = format_aom_grain_table(table);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!out) throw Error(ErrorCode::kIo, "cannot write grain table '" + path + "'");
 }
 
 }  // namespace filmgrain

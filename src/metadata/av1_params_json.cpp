@@ -117,6 +117,8 @@ Av1FilmGrainParams av1_params_from_json(const json& j) {
     p.cr_offset = get_int(j, "cr_offset", 256, false, 0, 511);
     p.overlap_flag = get_int(j, "overlap_flag", 0, req, 0, 1);
     p.clip_to_restricted_range = get_int(j, "clip_to_restricted_range", 0, req, 0, 1);
+    // 1: a set from an AFGS1 payload, which signals the chroma point counts (optional key)
+    p.chroma_point_counts_signalled = get_int(j, "chroma_point_counts_signalled", 0, false, 0, 1) != 0;
     return p;
 }
 

@@ -5,7 +5,6 @@
 // the picture count for callers that pass no ids.
 #include "filmgrain/session.hpp"
 
-#include <nlohmann/json.hpp>
 
 #include "av1/av1_synthesis.hpp"
 #include "session/av1_reference_slots.hpp"
@@ -13,13 +12,11 @@
 #include "core/thread_pool.hpp"
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
+#include "fgc/params_resolution.hpp"
 #include "fgc/plane_layout.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "metadata/afgs1.hpp"
-#include "metadata/av1_params_json.hpp"
-#include "metadata/json_access.hpp"
 #include "metadata/fgc_sei.hpp"
-#include "metadata/params_file.hpp"
 
 namespace filmgrain {
 
@@ -260,7 +257,10 @@ struct Session::Impl {
         // the selection already weighed the picture's matrix_coefficients against the set's
         FrameInfo selected = info;
         selected.matrix_coefficients.reset();
-        ApplyResult applied = apply_av1_params(sel->params, sel->matrix_coefficients, src, dst, selected);
+        Av1FilmGrainParams params = sel->params;
+        // av1_film_grain_params() signals num_cb/cr_points even for 4:2:0 without luma points
+        params.chroma_point_counts_signalled = true;
+        ApplyResult applied = apply_av1_params(params, sel->matrix_coefficients, src, dst, selected);
         if (!sel->params.apply_grain && applied.message.empty())
             applied.message = "film grain not applied: the selected AFGS1 set (film_grain_param_set_idx " +
                               std::to_string(payload.sets[sel->set_index].film_grain_param_set_idx) +
@@ -333,25 +333,6 @@ void Session::receive_afgs1_t35(const uint8_t* payload, std::size_t size) {
     impl_->model = Impl::Model::kAfgs1;
 }
 
-void Session::receive_json(std::string_view text, FgcCodec codec, std::optional<FgcPictureIds> picture) {
-    // Bounded in size and nesting depth (json_access.hpp): a hostile document must not
-    // overflow the host decoder's stack.
-    const nlohmann::json j =
-        parse_json_document(reinterpret_cast<const uint8_t*>(text.data()), text.size(), "JSON parameters");
-    if (j.is_object() && (j.contains("frames") || j.contains("frames_info")))
-        throw Error(ErrorCode::kUnsupported,
-                    "JSON parameters: a per-frame file ('frames' list) is not one parameter set; push each "
-                    "frame's entry with its picture");
-    const ParamsFile f = parse_params_json(j);
-    const FrameParams& fp = f.frames.at(0);
-    if (fp.fgc) {
-        receive_fgc_params(*fp.fgc, codec, picture);
-        return;
-    }
-    const std::vector<Av1FrameParams> av1 = av1_frame_params_from_json(j);
-    const Av1FrameParams& a = av1.at(0);
-    receive_av1_params(a.grain, 0, a.color ? a.color->matrix_coefficients : 2);
-}
 
 void Session::reset() {
     Impl& s = *impl_;

@@ -226,7 +226,7 @@ static int run_model(const char* model, int threads, const test_frame* src, test
              * not above any bigger picture */
             CHECK_STATUS(ctx, fg_context_push_afgs1_t35(ctx, kAfgs1TwoSets, sizeof kAfgs1TwoSets), FG_OK, NULL);
         } else if (k == 0) {
-            CHECK_STATUS(ctx, fg_context_push_json(ctx, kFgcJson, strlen(kFgcJson), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+            CHECK_STATUS(ctx, push_fgc_test_params(ctx, NULL), FG_OK, NULL);
         }
         fg_frame_info info;
         fg_frame_info_init(&info);

@@ -11,6 +11,7 @@
 
 #include <filmgrain/filmgrain.h>
 
+#include "afgs1_case.hpp"
 #include "conformance_case.hpp"
 #include "core/md5.hpp"
 #include "io/xz_file.hpp"
@@ -236,5 +237,36 @@ TEST_P(CapiAv1Conformance, FrameHeadersThroughReferenceSlots) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, CapiAv1Conformance, ::testing::ValuesIn(list_cases("av1_")),
                          [](const auto& info) { return info.param; });
+
+// The afgs1 family through libfilmgrain.so: each picture's T.35 payload (when its access unit
+// had one) with fg_context_push_afgs1_t35, then fg_context_apply.
+class CapiAfgs1Conformance : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CapiAfgs1Conformance, T35PayloadsPerPicture) {
+    const ConformanceCase c = load_case(GetParam());
+    fg_options o;
+    fg_options_init(&o);
+    Context ctx(o);
+    ASSERT_NE(ctx.ctx, nullptr);
+    int mismatches = 0;
+    for (int k = 0; k < c.frames; k++) {
+        if (const auto payload = afgs1_payload(c, k))
+            ASSERT_EQ(fg_context_push_afgs1_t35(ctx.ctx, payload->data(), payload->size()), FG_OK)
+                << c.name << " frame " << k << ": " << fg_last_error(ctx.ctx);
+        if (apply_frame(c, ctx.ctx, k, nullptr) != c.expected_md5(k)) {
+            mismatches++;
+            ADD_FAILURE() << c.name << " frame " << k << " differs from expected_md5";
+        }
+    }
+    EXPECT_EQ(mismatches, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, CapiAfgs1Conformance, ::testing::ValuesIn(list_cases("afgs1-")),
+                         [](const auto& info) {
+                             std::string n = info.param;
+                             for (auto& ch : n)
+                                 if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                             return n;
+                         });
 
 }  // namespace

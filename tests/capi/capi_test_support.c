@@ -130,14 +130,33 @@ uint32_t frame_checksum(const fg_frame* f) {
     return h;
 }
 
-const char* const kFgcJson =
-    "{\"film_grain_model_id\": 0, \"blending_mode_id\": 0, \"log2_scale_factor\": 4,"
-    " \"comp_model_present_flag\": [1, 1, 1],"
-    " \"num_intensity_intervals_minus1\": [1, 0, 0], \"num_model_values_minus1\": [2, 1, 0],"
-    " \"intensity_interval_lower_bound\": [[0, 128], [0], [0]],"
-    " \"intensity_interval_upper_bound\": [[127, 255], [255], [255]],"
-    " \"comp_model_value\": [[[120, 8, 8], [90, 10, 12]], [[60, 9]], [[50]]],"
-    " \"film_grain_characteristics_persistence_flag\": 1}";
+void fgc_test_params(fg_fgc_params* p) {
+    fg_fgc_params_init(p);
+    p->log2_scale_factor = 4;
+    for (int c = 0; c < 3; c++) {
+        p->comp_model_present_flag[c] = 1;
+        p->intensity_interval_upper_bound[c][0] = 255;
+    }
+    p->num_intensity_intervals_minus1[0] = 1;
+    p->num_model_values_minus1[0] = 2;
+    p->num_model_values_minus1[1] = 1;
+    p->intensity_interval_upper_bound[0][0] = 127;
+    p->intensity_interval_lower_bound[0][1] = 128;
+    p->intensity_interval_upper_bound[0][1] = 255;
+    const int32_t luma[2][3] = {{120, 8, 8}, {90, 10, 12}};
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 3; j++) p->comp_model_value[0][i][j] = luma[i][j];
+    p->comp_model_value[1][0][0] = 60;
+    p->comp_model_value[1][0][1] = 9;
+    p->comp_model_value[2][0][0] = 50;
+    p->persistence_flag = 1;
+}
+
+fg_status push_fgc_test_params(fg_context* ctx, const fg_picture_ids* picture) {
+    static fg_fgc_params p; /* 18 KB; the tests push from one thread at a time */
+    fgc_test_params(&p);
+    return fg_context_push_fgc_params(ctx, &p, FG_CODEC_HEVC, picture);
+}
 
 void av1_test_params(fg_av1_params* p, int grain_seed) {
     fg_av1_params_init(p);
@@ -190,7 +209,7 @@ fg_context* make_context(const char* model, int passthrough) {
         av1_test_params(&p, 4321);
         CHECK_STATUS(ctx, fg_context_push_av1_params(ctx, &p, 0), FG_OK, NULL);
     } else {
-        CHECK_STATUS(ctx, fg_context_push_json(ctx, kFgcJson, strlen(kFgcJson), FG_CODEC_HEVC, NULL), FG_OK, NULL);
+        CHECK_STATUS(ctx, push_fgc_test_params(ctx, NULL), FG_OK, NULL);
     }
     return ctx;
 }

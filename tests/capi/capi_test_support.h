@@ -44,12 +44,15 @@ uint32_t frame_checksum(const fg_frame* f);
 int plane_w(const fg_frame* f, int p);
 int plane_h(const fg_frame* f, int p);
 
-/* A valid FGC SEI in JSON with luma and both chroma components (persistence_flag 1). */
-extern const char* const kFgcJson;
+/* A valid FGC SEI with luma and both chroma components (persistence_flag 1): luma two
+ * intervals [0,127] (120, 8, 8) and [128,255] (90, 10, 12), Cb (60, 9), Cr (50); scale 2^4. */
+void fgc_test_params(fg_fgc_params* p);
+/* fgc_test_params pushed for the next picture (NULL) or with `picture`. */
+fg_status push_fgc_test_params(fg_context* ctx, const fg_picture_ids* picture);
 /* A valid AV1 parameter set: luma and chroma points, lag 2 AR filter, overlap. */
 void av1_test_params(fg_av1_params* p, int grain_seed);
 
-/* A context for a model: "rdd5", "vtm", "vfgs" (FGC SEI from kFgcJson) or "av1". */
+/* A context for a model: "rdd5", "vtm", "vfgs" (FGC SEI from fgc_test_params) or "av1". */
 fg_context* make_context(const char* model, int passthrough);
 
 #endif

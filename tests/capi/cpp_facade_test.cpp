@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <filmgrain/filmgrain.h>
 #include <filmgrain/filmgrain.hpp>
@@ -13,6 +15,9 @@
 #include "core/md5.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/av1_params_json.hpp"
+#include "metadata/fgc_sei.hpp"
+#include "metadata/json_access.hpp"
+#include "metadata/params_file.hpp"
 
 using namespace filmgrain;
 
@@ -23,6 +28,21 @@ const char* const kSei =
     " \"num_intensity_intervals_minus1\": [0, 0, 0], \"num_model_values_minus1\": [2, 0, 0],"
     " \"intensity_interval_lower_bound\": [[0], [0], []], \"intensity_interval_upper_bound\": [[255], [255], []],"
     " \"comp_model_value\": [[[100, 8, 8]], [[40]], []]}";
+
+// What an application that keeps parameter sets as JSON does: the tool-side reader
+// (src/metadata, not in libfilmgrain) gives a typed set, which goes to the session.
+void push_json(Session& s, const std::string& text, FgcCodec codec = FgcCodec::kHevc,
+               std::optional<FgcPictureIds> picture = std::nullopt) {
+    const nlohmann::json j =
+        parse_json_document(reinterpret_cast<const uint8_t*>(text.data()), text.size(), "JSON parameters");
+    const ParamsFile f = parse_params_json(j);
+    if (f.frames.at(0).fgc) {
+        s.receive_fgc_params(*f.frames[0].fgc, codec, picture);
+        return;
+    }
+    const std::vector<Av1FrameParams> av1 = av1_frame_params_from_json(j);
+    s.receive_av1_params(av1.at(0).grain, 0, av1[0].color ? av1[0].color->matrix_coefficients : 2);
+}
 
 FrameBuffer test_picture() {
     FrameBuffer b(160, 128, PixelFormat{ChromaFormat::k420, 10});
@@ -48,7 +68,12 @@ TEST(CppFacade, OptionErrorsAreThrownWithTheirCode) {
 TEST(CppFacade, ParameterErrorsNameTheField) {
     Session ctx;
     try {
-        ctx.receive_json(R"({"film_grain_model_id": 0, "log2_scale_factor": 40})");
+        FgcParams p;
+        p.log2_scale_factor = 40;
+        ctx.receive_fgc_params(p, FgcCodec::kHevc);
+        // checked with the picture, as an SEI's values are (passthrough_invalid applies)
+        FrameBuffer a = test_picture();
+        ctx.apply(a.view(), a.view());
         FAIL() << "no exception";
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ErrorCode::kInvalidParams);
@@ -62,7 +87,7 @@ TEST(CppFacade, SameSamplesAsTheCApi) {
     const std::string clean = md5_hex(a.bytes(), a.byte_size());
 
     Session cpp;
-    cpp.receive_json(kSei);
+    push_json(cpp, kSei);
     FrameInfo info;
     info.ids.poc = 6;
     const ApplyResult r = cpp.apply(a.view(), a.view(), &info);
@@ -70,7 +95,12 @@ TEST(CppFacade, SameSamplesAsTheCApi) {
 
     fg_context* c = nullptr;
     ASSERT_EQ(fg_context_create(nullptr, &c, nullptr, 0), FG_OK);
-    ASSERT_EQ(fg_context_push_json(c, kSei, std::strlen(kSei), FG_CODEC_HEVC, nullptr), FG_OK);
+    const std::vector<uint8_t> sei = write_fgc_sei_payload(
+        *parse_params_json(parse_json_document(reinterpret_cast<const uint8_t*>(kSei), std::strlen(kSei), "kSei"))
+             .frames.at(0)
+             .fgc,
+        FgcCodec::kHevc);
+    ASSERT_EQ(fg_context_push_fgc_sei(c, sei.data(), sei.size(), FG_CODEC_HEVC, nullptr), FG_OK);
     const FrameView v = b.view();
     fg_frame f{};
     for (int p = 0; p < 3; p++) {
@@ -94,11 +124,11 @@ TEST(CppFacade, SameSamplesAsTheCApi) {
 TEST(CppFacade, MovedContextKeepsItsState) {
     FrameBuffer a = test_picture(), b = test_picture();
     Session first;
-    first.receive_json(kSei);
+    push_json(first, kSei);
     Session moved = std::move(first);
     EXPECT_TRUE(moved.apply(a.view(), a.view()).grain_applied);
     Session fresh;
-    fresh.receive_json(kSei);
+    push_json(fresh, kSei);
     fresh.apply(b.view(), b.view());
     EXPECT_EQ(md5_hex(a.bytes(), a.byte_size()), md5_hex(b.bytes(), b.byte_size()));
 }
@@ -120,13 +150,13 @@ void run_case_through_json(const std::string& name) {
         const auto& fi = c.frame_info(k);
         FrameInfo info;
         if (av1) {
-            ctx.receive_json(fi.at("params").dump());  // {"av1": {...}, "matrix_coefficients": ...}
+            push_json(ctx, fi.at("params").dump());  // {"av1": {...}, "matrix_coefficients": ...}
         } else {
             info.ids.poc = fi.at("poc").get<int>();
             info.ids.idr_pic_id = fi.at("idr_pic_id").is_null() ? 0 : fi.at("idr_pic_id").get<int>();
             if (fi.at("sei_present").get<bool>())
-                ctx.receive_json(fi.at("params").dump(), c.json.at("codec") == "h264" ? FgcCodec::kAvc : FgcCodec::kHevc,
-                                 info.ids);
+                push_json(ctx, fi.at("params").dump(), c.json.at("codec") == "h264" ? FgcCodec::kAvc : FgcCodec::kHevc,
+                          info.ids);
         }
         FrameBuffer in = c.input_frame(k), out(c.width, c.height, c.format);
         ctx.apply(in.view(), out.view(), &info);

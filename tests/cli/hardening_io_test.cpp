@@ -47,26 +47,6 @@ bool under_sanitizer() {
     return t.find("asan") != std::string::npos;
 }
 
-// A shell command line, run as run_tool runs the tool.
-CommandResult run_shell(const std::string& cmd) {
-    CommandResult r;
-    std::FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    const int status = pclose(p);
-    if (WIFEXITED(status)) {
-        r.exit_code = WEXITSTATUS(status);
-        if (r.exit_code > 128 && r.exit_code < 128 + 65) {
-            r.signal = r.exit_code - 128;
-            r.exit_code = -1;
-        }
-    } else if (WIFSIGNALED(status)) {
-        r.signal = WTERMSIG(status);
-    }
-    return r;
-}
 
 // `'tool' args` followed by the caller's own redirections (run_tool always ends with 2>&1,
 // which would send the messages where stdout goes).

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "afgs1_case.hpp"
 #include "av1/av1_synthesis.hpp"
 #include "conformance_case.hpp"
 #include "core/md5.hpp"
@@ -85,6 +86,15 @@ TEST_P(ConformancePerTarget, Av1Cases) {
     const auto cases = list_cases("av1_");
     ASSERT_FALSE(cases.empty());
     for (const auto& name : cases) EXPECT_EQ(run_av1_case(name), 0) << name << " on " << GetParam().name;
+}
+
+TEST_P(ConformancePerTarget, Afgs1Cases) {
+    const auto cases = list_cases("afgs1-");
+    ASSERT_FALSE(cases.empty());
+    SessionOptions o;
+    o.threads = 2;
+    for (const auto& name : cases)
+        EXPECT_EQ(run_afgs1_case(load_case(name), o, false), 0) << name << " on " << GetParam().name;
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, ConformancePerTarget, ::testing::ValuesIn(simd::available_targets()),

@@ -42,10 +42,10 @@ struct CommandResult {
     }
 };
 
-// Runs `args` after the tool under test through the shell (quote them yourself).
-inline CommandResult run_tool(const std::string& args) {
+// Runs a shell command line (its stderr is the caller's to redirect); a child killed by a
+// signal is told apart from an error exit.
+inline CommandResult run_shell(const std::string& cmd) {
     CommandResult r;
-    const std::string cmd = "'" + tool_under_test() + "' " + args + " 2>&1";
     std::FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     std::array<char, 4096> buf;
@@ -63,6 +63,11 @@ inline CommandResult run_tool(const std::string& args) {
         r.signal = WTERMSIG(status);
     }
     return r;
+}
+
+// Runs `args` after the tool under test through the shell (quote them yourself).
+inline CommandResult run_tool(const std::string& args) {
+    return run_shell("'" + tool_under_test() + "' " + args + " 2>&1");
 }
 
 }  // namespace filmgrain::test_support

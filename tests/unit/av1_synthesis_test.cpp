@@ -2,6 +2,7 @@
 // stripe independence and parameter validation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <random>
@@ -286,6 +287,24 @@ TEST(Av1Validation, AcceptsValid) {
     Av1FilmGrainParams off;
     off.num_y_points = 1000;  // not looked at
     EXPECT_EQ(error_message(off), "");
+}
+
+// AFGS1 signals num_cb/cr_points where AV1's film_grain_params() infers them 0 (4:2:0 without
+// luma points): such a set carries chroma-only grain (AFGS1 text, FFmpeg 7.1; conformance
+// afgs1-352x288-420p8-chroma picture 6). The AV1 rule stays for sets that did not signal them.
+TEST(Av1Validation, ChromaOnlyGrainIn420NeedsSignalledCounts) {
+    Av1FilmGrainParams p = full_params();
+    p.num_y_points = 0;
+    EXPECT_NE(error_message(p).find("num_cb_points (4:2:0 with num_y_points = 0) = 2"), std::string::npos);
+    p.chroma_point_counts_signalled = true;
+    EXPECT_EQ(error_message(p), "");
+    // and it synthesizes chroma grain without luma grain
+    FrameBuffer in(64, 48, PixelFormat{ChromaFormat::k420, 8}), out = in;
+    std::fill(in.bytes(), in.bytes() + in.byte_size(), uint8_t(128));
+    av1::apply_film_grain(p, in.view(), out.view(), 2);
+    const std::size_t luma = 64 * 48;
+    EXPECT_TRUE(std::equal(in.bytes(), in.bytes() + luma, out.bytes()));
+    EXPECT_FALSE(std::equal(in.bytes() + luma, in.bytes() + in.byte_size(), out.bytes() + luma));
 }
 
 TEST(Av1Validation, MessagesNameFieldValueAndRange) {
