@@ -8,6 +8,8 @@
 #include <new>
 #include <cstddef>
 #include <string>
+#include <type_traits>
+#include <iterator>
 #include <vector>
 
 #include "core/thread_pool.hpp"
@@ -125,42 +127,56 @@ std::optional<filmgrain::FgcPictureIds> to_ids(const fg_picture_ids* p) {
     return ids;
 }
 
-template <std::size_t N>
-void copy_points(std::array<int, N>& to, const int (&from)[N]) {
-    for (std::size_t i = 0; i < N; i++) to[i] = from[i];
+// Every field of fg_av1_params and its Av1FilmGrainParams namesake, for either direction:
+// `f(x, y)` is called with the two members (arrays as arrays).
+template <typename A, typename B, typename F>
+void for_each_av1_field(A& a, B& b, F&& f) {
+    f(a.apply_grain, b.apply_grain);
+    f(a.grain_seed, b.grain_seed);
+    f(a.update_grain, b.update_grain);
+    f(a.film_grain_params_ref_idx, b.film_grain_params_ref_idx);
+    f(a.num_y_points, b.num_y_points);
+    f(a.point_y_value, b.point_y_value);
+    f(a.point_y_scaling, b.point_y_scaling);
+    f(a.chroma_scaling_from_luma, b.chroma_scaling_from_luma);
+    f(a.num_cb_points, b.num_cb_points);
+    f(a.point_cb_value, b.point_cb_value);
+    f(a.point_cb_scaling, b.point_cb_scaling);
+    f(a.num_cr_points, b.num_cr_points);
+    f(a.point_cr_value, b.point_cr_value);
+    f(a.point_cr_scaling, b.point_cr_scaling);
+    f(a.grain_scaling_minus_8, b.grain_scaling_minus_8);
+    f(a.ar_coeff_lag, b.ar_coeff_lag);
+    f(a.ar_coeffs_y_plus_128, b.ar_coeffs_y_plus_128);
+    f(a.ar_coeffs_cb_plus_128, b.ar_coeffs_cb_plus_128);
+    f(a.ar_coeffs_cr_plus_128, b.ar_coeffs_cr_plus_128);
+    f(a.ar_coeff_shift_minus_6, b.ar_coeff_shift_minus_6);
+    f(a.grain_scale_shift, b.grain_scale_shift);
+    f(a.cb_mult, b.cb_mult);
+    f(a.cb_luma_mult, b.cb_luma_mult);
+    f(a.cb_offset, b.cb_offset);
+    f(a.cr_mult, b.cr_mult);
+    f(a.cr_luma_mult, b.cr_luma_mult);
+    f(a.cr_offset, b.cr_offset);
+    f(a.overlap_flag, b.overlap_flag);
+    f(a.clip_to_restricted_range, b.clip_to_restricted_range);
 }
+
+// Assigns `from` to `to`, element by element for arrays (C arrays and std::array alike).
+struct AssignField {
+    template <typename To, typename From>
+    void operator()(To& to, const From& from) const {
+        if constexpr (std::is_arithmetic_v<To>) {
+            to = from;
+        } else {
+            for (std::size_t i = 0; i < std::size(from); i++) to[i] = from[i];
+        }
+    }
+};
 
 filmgrain::Av1FilmGrainParams to_av1(const fg_av1_params& c) {
     filmgrain::Av1FilmGrainParams p;
-    p.apply_grain = c.apply_grain;
-    p.grain_seed = c.grain_seed;
-    p.update_grain = c.update_grain;
-    p.film_grain_params_ref_idx = c.film_grain_params_ref_idx;
-    p.num_y_points = c.num_y_points;
-    copy_points(p.point_y_value, c.point_y_value);
-    copy_points(p.point_y_scaling, c.point_y_scaling);
-    p.chroma_scaling_from_luma = c.chroma_scaling_from_luma;
-    p.num_cb_points = c.num_cb_points;
-    copy_points(p.point_cb_value, c.point_cb_value);
-    copy_points(p.point_cb_scaling, c.point_cb_scaling);
-    p.num_cr_points = c.num_cr_points;
-    copy_points(p.point_cr_value, c.point_cr_value);
-    copy_points(p.point_cr_scaling, c.point_cr_scaling);
-    p.grain_scaling_minus_8 = c.grain_scaling_minus_8;
-    p.ar_coeff_lag = c.ar_coeff_lag;
-    copy_points(p.ar_coeffs_y_plus_128, c.ar_coeffs_y_plus_128);
-    copy_points(p.ar_coeffs_cb_plus_128, c.ar_coeffs_cb_plus_128);
-    copy_points(p.ar_coeffs_cr_plus_128, c.ar_coeffs_cr_plus_128);
-    p.ar_coeff_shift_minus_6 = c.ar_coeff_shift_minus_6;
-    p.grain_scale_shift = c.grain_scale_shift;
-    p.cb_mult = c.cb_mult;
-    p.cb_luma_mult = c.cb_luma_mult;
-    p.cb_offset = c.cb_offset;
-    p.cr_mult = c.cr_mult;
-    p.cr_luma_mult = c.cr_luma_mult;
-    p.cr_offset = c.cr_offset;
-    p.overlap_flag = c.overlap_flag;
-    p.clip_to_restricted_range = c.clip_to_restricted_range;
+    for_each_av1_field(p, c, AssignField{});
     return p;
 }
 
@@ -194,10 +210,17 @@ filmgrain::FrameView to_view(const fg_frame* f, const char* name) {
     return v;
 }
 
+// A caller-filled struct of this library's version: every field 0, struct_size set.
+template <typename T>
+T zeroed_struct() {
+    T t;
+    std::memset(&t, 0, sizeof t);
+    t.struct_size = sizeof t;
+    return t;
+}
+
 fg_options default_options() {
-    fg_options o;
-    std::memset(&o, 0, sizeof o);
-    o.struct_size = sizeof o;
+    fg_options o = zeroed_struct<fg_options>();
     o.flavour = FG_FLAVOUR_RDD5;
     o.persistence = FG_PERSISTENCE_REFERENCE;
     o.vfgs_gain_percent = 100;
@@ -206,17 +229,13 @@ fg_options default_options() {
 }
 
 fg_frame_info default_frame_info() {
-    fg_frame_info i;
-    std::memset(&i, 0, sizeof i);
-    i.struct_size = sizeof i;
+    fg_frame_info i = zeroed_struct<fg_frame_info>();
     return i;
 }
 
 fg_av1_params default_av1_params() {
-    fg_av1_params c;
-    std::memset(&c, 0, sizeof c);
+    fg_av1_params c = zeroed_struct<fg_av1_params>();
     const filmgrain::Av1FilmGrainParams d;
-    c.struct_size = sizeof c;
     c.update_grain = d.update_grain;
     for (int& v : c.ar_coeffs_y_plus_128) v = 128;
     for (int& v : c.ar_coeffs_cb_plus_128) v = 128;
@@ -293,10 +312,8 @@ filmgrain::FgcParams to_fgc(const fg_fgc_params& c) {
 }
 
 fg_fgc_params default_fgc_params() {
-    fg_fgc_params c;
-    std::memset(&c, 0, sizeof c);
+    fg_fgc_params c = zeroed_struct<fg_fgc_params>();
     const filmgrain::FgcParams d;
-    c.struct_size = sizeof c;
     c.colour_primaries = d.film_grain_colour_primaries;
     c.transfer_characteristics = d.film_grain_transfer_characteristics;
     c.matrix_coeffs = d.film_grain_matrix_coeffs;
@@ -336,9 +353,7 @@ fg_fgc_params from_fgc(const filmgrain::FgcParams& p) {
 }
 
 fg_av1_grain default_av1_grain() {
-    fg_av1_grain g;
-    std::memset(&g, 0, sizeof g);
-    g.struct_size = sizeof g;
+    fg_av1_grain g = zeroed_struct<fg_av1_grain>();
     g.scaling_shift = 8;
     g.ar_coeff_shift = 6;
     g.matrix_coefficients = 2;
@@ -634,40 +649,7 @@ fg_status fg_av1_grain_to_params(const fg_av1_grain* grain, fg_av1_params* out, 
         const fg_av1_grain g = sized_copy(grain, sizeof(fg_av1_grain), default_av1_grain(), "grain");
         const filmgrain::Av1FilmGrainParams p = from_av1_grain(g);
         fg_av1_params c = default_av1_params();
-        c.apply_grain = p.apply_grain;
-        c.grain_seed = p.grain_seed;
-        c.update_grain = 1;
-        c.num_y_points = p.num_y_points;
-        c.chroma_scaling_from_luma = p.chroma_scaling_from_luma;
-        c.num_cb_points = p.num_cb_points;
-        c.num_cr_points = p.num_cr_points;
-        for (int i = 0; i < 14; i++) {
-            c.point_y_value[i] = p.point_y_value[std::size_t(i)];
-            c.point_y_scaling[i] = p.point_y_scaling[std::size_t(i)];
-        }
-        for (int i = 0; i < 10; i++) {
-            c.point_cb_value[i] = p.point_cb_value[std::size_t(i)];
-            c.point_cb_scaling[i] = p.point_cb_scaling[std::size_t(i)];
-            c.point_cr_value[i] = p.point_cr_value[std::size_t(i)];
-            c.point_cr_scaling[i] = p.point_cr_scaling[std::size_t(i)];
-        }
-        c.grain_scaling_minus_8 = p.grain_scaling_minus_8;
-        c.ar_coeff_lag = p.ar_coeff_lag;
-        for (int i = 0; i < 24; i++) c.ar_coeffs_y_plus_128[i] = p.ar_coeffs_y_plus_128[std::size_t(i)];
-        for (int i = 0; i < 25; i++) {
-            c.ar_coeffs_cb_plus_128[i] = p.ar_coeffs_cb_plus_128[std::size_t(i)];
-            c.ar_coeffs_cr_plus_128[i] = p.ar_coeffs_cr_plus_128[std::size_t(i)];
-        }
-        c.ar_coeff_shift_minus_6 = p.ar_coeff_shift_minus_6;
-        c.grain_scale_shift = p.grain_scale_shift;
-        c.cb_mult = p.cb_mult;
-        c.cb_luma_mult = p.cb_luma_mult;
-        c.cb_offset = p.cb_offset;
-        c.cr_mult = p.cr_mult;
-        c.cr_luma_mult = p.cr_luma_mult;
-        c.cr_offset = p.cr_offset;
-        c.overlap_flag = p.overlap_flag;
-        c.clip_to_restricted_range = p.clip_to_restricted_range;
+        for_each_av1_field(c, p, AssignField{});
         c.matrix_coefficients = g.matrix_coefficients;
         *out = c;
     });
