@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <functional>
 #include <cstdio>
 #include <memory>
 
@@ -26,8 +27,15 @@
 #include "filmgrain/error.hpp"
 
 #ifdef FILMGRAIN_HAVE_LIBAV
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "bitstream/sei_messages.hpp"
+#include "bitstream/stream_scan.hpp"
 #include "filmgrain/session.hpp"
 #include "libav/video_decoder.hpp"
+#include "metadata/afgs1.hpp"
 #endif
 
 namespace filmgrain::cli {
@@ -88,6 +96,46 @@ private:
     Clock::time_point start_, last_;
 };
 
+// AFGS1 in H.264 / H.265 / H.266 streams (T.35 registered user data SEI): FFmpeg 5.1's
+// decoders neither apply nor export it, so the elementary stream is scanned for the payloads.
+// They update the 8 stored sets in decode order, and each applies to the picture of its own
+// access unit (AFGS1 text), which the decoder outputs in output order: the result is the
+// payload (sets resolved) of each output picture, or nothing. Containers (MP4, Matroska...)
+// and AV1 are left to libav: empty.
+std::vector<std::optional<Afgs1Payload>> afgs1_in_output_order(const std::string& path,
+                                                                const std::function<void(const std::string&)>& warn) {
+    std::vector<std::optional<Afgs1Payload>> out;
+    bitstream::StreamScan scan;
+    try {
+        scan = bitstream::scan_stream_file(path, std::nullopt);
+    } catch (const Error&) {
+        return out;  // not an elementary stream the scanner reads
+    }
+    if (scan.codec == bitstream::StreamCodec::kAv1) return out;
+    Afgs1Reader reader;
+    std::map<const bitstream::AccessUnit*, Afgs1Payload> by_unit;
+    bool any = false;
+    for (const bitstream::AccessUnit& au : scan.units)
+        for (const bitstream::FoundT35& t : au.t35) {
+            if (!bitstream::is_afgs1_t35(t.t35)) continue;
+            any = true;
+            std::vector<uint8_t> payload{uint8_t(t.t35.country_code)};
+            payload.insert(payload.end(), t.t35.bytes.begin(), t.t35.bytes.end());
+            try {
+                by_unit[&au] = reader.receive(payload, true);  // several in one unit: the last chooses
+            } catch (const Error& e) {
+                warn("access unit " + std::to_string(au.index) + ": AFGS1 payload skipped: " + e.what());
+            }
+        }
+    if (!any) return out;
+    for (const bitstream::AccessUnit* au : bitstream::units_in_output_order(scan)) {
+        if (!au->output) continue;
+        const auto it = by_unit.find(au);
+        out.push_back(it == by_unit.end() ? std::nullopt : std::optional<Afgs1Payload>(it->second));
+    }
+    return out;
+}
+
 int run_decode(const DecodeOptions& o) {
     const FgcFlavour flavour = parse_flavour(o.flavour);
     bool y4m = o.output == "-" || has_y4m_extension(o.output);
@@ -116,6 +164,8 @@ int run_decode(const DecodeOptions& o) {
     };
     // damage is reported even with -q: it is data lost, not progress
     decoder.on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
+    const std::vector<std::optional<Afgs1Payload>> afgs1 =
+        o.no_grain ? std::vector<std::optional<Afgs1Payload>>{} : afgs1_in_output_order(o.input, warn);
     // Pictures are not copied out of the decoder: the synthesis writes its output frame
     // straight from the decoder's picture (as dav1d does), and pictures without grain are
     // written from the decoder's picture itself.
@@ -143,6 +193,23 @@ int run_decode(const DecodeOptions& o) {
             continue;
         }
         const FrameView src = frame.decoded, v = frame.picture.view();
+        if (!o.no_grain && !frame.av1 && !frame.fgc && std::size_t(frame.index) < afgs1.size() &&
+            afgs1[std::size_t(frame.index)]) {
+            // the set AFGS1 7.3 selects for this picture, as resolved AV1 parameters
+            Afgs1Picture pic;
+            pic.width = src.width;
+            pic.height = src.height;
+            pic.format = src.format;
+            pic.bit_depth = src.bit_depth;
+            if (frame.matrix_coefficients != 2) pic.matrix_coefficients = frame.matrix_coefficients;
+            if (const auto sel = select_afgs1_set(*afgs1[std::size_t(frame.index)], pic); sel && sel->params.apply_grain) {
+                Av1FilmGrainParams p = sel->params;
+                p.update_grain = 1;
+                p.chroma_point_counts_signalled = true;  // AFGS1 signals the chroma point counts
+                frame.av1 = p;
+                frame.matrix_coefficients = sel->matrix_coefficients;
+            }
+        }
         if (o.no_grain || (!frame.av1 && !frame.fgc)) {
             // the decoder's output as it is: the clean pictures grain is added to
             writer->write(src);
