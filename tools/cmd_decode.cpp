@@ -27,11 +27,10 @@
 #include "filmgrain/error.hpp"
 
 #ifdef FILMGRAIN_HAVE_LIBAV
-#include <map>
 #include <optional>
 #include <vector>
 
-#include "bitstream/sei_messages.hpp"
+#include "bitstream/av1_grain_extraction.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "filmgrain/session.hpp"
 #include "libav/video_decoder.hpp"
@@ -96,43 +95,20 @@ private:
     Clock::time_point start_, last_;
 };
 
-// AFGS1 in H.264 / H.265 / H.266 streams (T.35 registered user data SEI): FFmpeg 5.1's
-// decoders neither apply nor export it, so the elementary stream is scanned for the payloads.
-// They update the 8 stored sets in decode order, and each applies to the picture of its own
-// access unit (AFGS1 text), which the decoder outputs in output order: the result is the
-// payload (sets resolved) of each output picture, or nothing. Containers (MP4, Matroska...)
-// and AV1 are left to libav: empty.
+// AFGS1 in H.264 / H.265 / H.266 streams: FFmpeg 5.1's decoders neither apply nor export it,
+// so the elementary stream is scanned for the payloads (bitstream/av1_grain_extraction.hpp).
+// Containers (MP4, Matroska...) the scanner does not read are left to libav: empty.
 std::vector<std::optional<Afgs1Payload>> afgs1_in_output_order(const std::string& path,
                                                                 const std::function<void(const std::string&)>& warn) {
-    std::vector<std::optional<Afgs1Payload>> out;
     bitstream::StreamScan scan;
     try {
         scan = bitstream::scan_stream_file(path, std::nullopt);
     } catch (const Error&) {
-        return out;  // not an elementary stream the scanner reads
+        return {};
     }
-    if (scan.codec == bitstream::StreamCodec::kAv1) return out;
-    Afgs1Reader reader;
-    std::map<const bitstream::AccessUnit*, Afgs1Payload> by_unit;
-    bool any = false;
-    for (const bitstream::AccessUnit& au : scan.units)
-        for (const bitstream::FoundT35& t : au.t35) {
-            if (!bitstream::is_afgs1_t35(t.t35)) continue;
-            any = true;
-            std::vector<uint8_t> payload{uint8_t(t.t35.country_code)};
-            payload.insert(payload.end(), t.t35.bytes.begin(), t.t35.bytes.end());
-            try {
-                by_unit[&au] = reader.receive(payload, true);  // several in one unit: the last chooses
-            } catch (const Error& e) {
-                warn("access unit " + std::to_string(au.index) + ": AFGS1 payload skipped: " + e.what());
-            }
-        }
-    if (!any) return out;
-    for (const bitstream::AccessUnit* au : bitstream::units_in_output_order(scan)) {
-        if (!au->output) continue;
-        const auto it = by_unit.find(au);
-        out.push_back(it == by_unit.end() ? std::nullopt : std::optional<Afgs1Payload>(it->second));
-    }
+    std::vector<std::string> warnings;
+    std::vector<std::optional<Afgs1Payload>> out = bitstream::afgs1_payloads_in_output_order(scan, warnings);
+    for (const std::string& w : warnings) warn(w);
     return out;
 }
 

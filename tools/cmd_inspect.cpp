@@ -8,6 +8,7 @@
 #include "bitstream/stream_report.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "cli_common.hpp"
+#include "option_parsing.hpp"
 #include "grain_outputs.hpp"
 #include "filmgrain/error.hpp"
 
@@ -16,6 +17,7 @@ namespace {
 
 struct InspectOptions {
     std::string stream, codec, output;
+    std::string size, pix_fmt;  // params extract of AFGS1 in H.26x: the picture sets are selected for
     bool json = false;
     bool quiet = false;
 };
@@ -53,6 +55,54 @@ int run_extract_av1(const InspectOptions& o, const bitstream::StreamScan& s, std
     return 0;
 }
 
+// H.26x with AFGS1 (T.35 SEI): each output picture's selected set, in the AV1 per-frame form.
+// The scanner does not read picture sizes from parameter sets, so the picture the sets are
+// selected for is given (--size, --pix-fmt), as `apply` is given it.
+int run_extract_afgs1(const InspectOptions& o, const std::vector<std::optional<Afgs1Payload>>& payloads,
+                      std::vector<std::string>& warnings, const std::vector<std::string>& afgs1_warnings) {
+    if (o.size.empty() || o.pix_fmt.empty())
+        throw Error(ErrorCode::kInvalidArgument,
+                    "'" + o.stream + "' carries AFGS1 payloads, whose set is selected for the picture's size and "
+                    "format: give --size WxH and --pix-fmt (e.g. --size 1920x1080 --pix-fmt yuv420p10le)");
+    const PictureSize size = parse_picture_size(o.size, "--size");
+    const PixelFormat fmt = parse_pix_fmt(o.pix_fmt);
+    warnings.insert(warnings.end(), afgs1_warnings.begin(), afgs1_warnings.end());
+    Afgs1Picture pic;
+    pic.width = size.width;
+    pic.height = size.height;
+    pic.format = fmt.chroma;
+    pic.bit_depth = fmt.bit_depth;
+    std::vector<Av1FrameParams> frames;
+    for (const auto& payload : payloads) {
+        Av1FrameParams f;
+        f.grain.apply_grain = 0;
+        if (payload)
+            if (const auto sel = select_afgs1_set(*payload, pic)) {
+                f.grain = sel->params;
+                f.grain.update_grain = 1;
+                f.grain.chroma_point_counts_signalled = true;
+                Av1ColorInfo c;
+                c.bit_depth = fmt.bit_depth;
+                c.mono_chrome = fmt.chroma == ChromaFormat::k400;
+                c.subsampling_x = fmt.chroma == ChromaFormat::k420 || fmt.chroma == ChromaFormat::k422;
+                c.subsampling_y = fmt.chroma == ChromaFormat::k420;
+                if (c.mono_chrome) c.subsampling_x = c.subsampling_y = 1;
+                c.matrix_coefficients = sel->matrix_coefficients;
+                f.color = c;
+            }
+        frames.push_back(f);
+    }
+    if (!o.quiet)
+        for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
+    write_file_atomically(o.output, av1_frame_params_to_json(frames).dump(1) + "\n");
+    int with_grain = 0;
+    for (const auto& f : frames) with_grain += f.grain.apply_grain != 0;
+    if (!o.quiet && o.output != "-")
+        std::fprintf(stderr, "filmgrain: %zu picture(s), %d with AFGS1 film grain, written to %s\n", frames.size(),
+                     with_grain, o.output.c_str());
+    return 0;
+}
+
 int run_extract(const InspectOptions& o) {
     const bitstream::StreamScan s = scan(o);
     std::vector<std::string> warnings;
@@ -60,6 +110,11 @@ int run_extract(const InspectOptions& o) {
         for (const auto& w : u.warnings) warnings.push_back("unit " + std::to_string(u.index) + ": " + w);
     if (s.codec == bitstream::StreamCodec::kAv1) return run_extract_av1(o, s, warnings);
     const ParamsFile f = bitstream::params_file_from_scan(s, warnings);
+    std::vector<std::string> afgs1_warnings;
+    const auto afgs1 = bitstream::afgs1_payloads_in_output_order(s, afgs1_warnings);
+    if (!afgs1.empty() && !f.has_fgc()) return run_extract_afgs1(o, afgs1, warnings, afgs1_warnings);
+    if (!afgs1.empty())
+        warnings.push_back("the stream also carries AFGS1 payloads; this file holds its FGC SEI only");
     if (!o.quiet)
         for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
     write_file_atomically(o.output, params_file_to_json(f).dump(1) + "\n");
@@ -102,6 +157,9 @@ void register_inspect(CLI::App& app) {
     add_stream_options(extract, e.get());
     extract->add_option("--output,-o", e->output, "parameter file to write, - for stdout")->required();
     extract->add_flag("--quiet,-q", e->quiet, "no messages on stderr except errors");
+    extract->add_option("--size", e->size,
+                        "H.26x with AFGS1 T.35 SEI: the picture size WxH the AFGS1 sets are selected for");
+    extract->add_option("--pix-fmt", e->pix_fmt, "H.26x with AFGS1 T.35 SEI: the picture's pixel format (yuv420p...)");
     extract->callback([e]() {
         if (int rc = run_extract(*e)) throw CLI::RuntimeError(rc);
     });

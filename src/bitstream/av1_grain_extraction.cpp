@@ -1,8 +1,10 @@
 #include "bitstream/av1_grain_extraction.hpp"
 
+#include <map>
 #include <optional>
 
 #include "filmgrain/error.hpp"
+#include "bitstream/sei_messages.hpp"
 #include "metadata/afgs1.hpp"
 
 namespace filmgrain::bitstream {
@@ -124,6 +126,34 @@ std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::ve
         frames.push_back(f);
     }
     return frames;
+}
+
+std::vector<std::optional<Afgs1Payload>> afgs1_payloads_in_output_order(const StreamScan& scan,
+                                                                         std::vector<std::string>& warnings) {
+    std::vector<std::optional<Afgs1Payload>> out;
+    if (scan.codec == StreamCodec::kAv1) return out;
+    Afgs1Reader reader;
+    std::map<const AccessUnit*, Afgs1Payload> by_unit;
+    bool any = false;
+    for (const AccessUnit& au : scan.units)
+        for (const FoundT35& t : au.t35) {
+            if (!is_afgs1_t35(t.t35)) continue;
+            any = true;
+            std::vector<uint8_t> payload{uint8_t(t.t35.country_code)};
+            payload.insert(payload.end(), t.t35.bytes.begin(), t.t35.bytes.end());
+            try {
+                by_unit[&au] = reader.receive(payload, true);
+            } catch (const Error& e) {
+                warnings.push_back("access unit " + std::to_string(au.index) + ": AFGS1 payload skipped: " + e.what());
+            }
+        }
+    if (!any) return out;
+    for (const AccessUnit* au : units_in_output_order(scan)) {
+        if (!au->output) continue;
+        const auto it = by_unit.find(au);
+        out.push_back(it == by_unit.end() ? std::nullopt : std::optional<Afgs1Payload>(it->second));
+    }
+    return out;
 }
 
 }  // namespace filmgrain::bitstream

@@ -6,10 +6,12 @@
 //   - else from the frame headers' film_grain_params() (film_grain_params_present = 1),
 //     which the scan reads (av1_frame_header.hpp).
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bitstream/stream_scan.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/av1_params_json.hpp"
 
 namespace filmgrain::bitstream {
@@ -27,5 +29,14 @@ namespace filmgrain::bitstream {
 //
 // Throws Error(kMalformedPayload) for a scan that is not AV1 or holds no temporal unit.
 std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::vector<std::string>& warnings);
+
+// AFGS1 in H.264 / H.265 / H.266 streams (T.35 registered user data SEI): the payloads update
+// the 8 stored sets in decode order, and each applies to the picture of its own access unit
+// (AFGS1 text). One entry per output picture (units_in_output_order, dropped pictures left
+// out): the payload of its unit with the sets resolved, or nothing. Several payloads in one
+// unit: each updates the stored sets, the last one chooses. A damaged payload is skipped with
+// a warning. Empty when the stream carries no AFGS1 payload (or is AV1: av1_params_from_scan).
+std::vector<std::optional<Afgs1Payload>> afgs1_payloads_in_output_order(const StreamScan& scan,
+                                                                         std::vector<std::string>& warnings);
 
 }  // namespace filmgrain::bitstream

@@ -161,6 +161,7 @@ json av1_params_to_json(const Av1FilmGrainParams& p) {
     j["cr_offset"] = cr ? json(p.cr_offset) : json(nullptr);
     j["overlap_flag"] = p.overlap_flag;
     j["clip_to_restricted_range"] = p.clip_to_restricted_range;
+    if (p.chroma_point_counts_signalled) j["chroma_point_counts_signalled"] = 1;  // an AFGS1 set
     return j;
 }
 

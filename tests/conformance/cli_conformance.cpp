@@ -124,6 +124,26 @@ TEST(CliConformanceDecode, Afgs1InHevcWithBFramesEqualsTheGoldens) {
     fs::remove_all(tmp);
 }
 
+// The same stream through `params extract` (the picture the sets are selected for given, as
+// the scanner does not read sizes) and `apply --params`: the goldens again. Without the
+// picture, extract refuses naming the options.
+TEST(CliConformanceDecode, Afgs1InHevcExtractedAndAppliedEqualsTheGoldens) {
+    const ConformanceCase c = load_case("afgs1-352x288-420p8-bframes");
+    const fs::path tmp = fs::temp_directory_path() / ("filmgrain-afgs1-extract-" + std::to_string(::getpid()));
+    fs::create_directories(tmp);
+    const std::string stream = q((fs::path(c.dir) / "stream.hevc").string());
+    std::string log;
+    const std::string tool = std::string(q(FILMGRAIN_TOOL_PATH));
+    EXPECT_NE(run_command(tool + " params extract " + stream + " -o " + q((tmp / "x.json").string()), &log), 0);
+    EXPECT_NE(log.find("give --size WxH and --pix-fmt"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(tmp / "x.json"));
+    const std::string extract = tool + " params extract -q " + stream + " -o " + q((tmp / "p.json").string()) +
+                                " --size 352x288 --pix-fmt yuv420p";
+    ASSERT_EQ(run_command(extract, &log), 0) << extract << "\n" << log;
+    run_cli(c, "--params " + q((tmp / "p.json").string()));
+    fs::remove_all(tmp);
+}
+
 TEST(CliConformanceSet, EveryFamilyPresent) { EXPECT_EQ(all_cases().size(), 16u + 16u + 28u + 10u); }
 
 }  // namespace
