@@ -4,6 +4,7 @@
 // equal `apply --afgs1` with the same payloads. (Frame-header grain: frame_header_grain_test.cpp.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <random>
 
@@ -239,3 +240,80 @@ TEST(ExtractAfgs1, DamagedStreamsAreReportedNotFatal) {
     EXPECT_GT(reported + refused, 0);
     fs::remove_all(dir);
 }
+
+// AFGS1 carried in H.265 / H.264 (T.35 registered user data SEI, payloadType 4) of an x265 /
+// x264 stream with B-frames: `decode` gives each picture the set of its own access unit's payload (stored sets
+// in decode order), which equals `apply --afgs1` with the payloads put in output order, and
+// `params extract --size --pix-fmt` + `apply -p` gives the same pictures.
+class Afgs1InH26x : public ::testing::TestWithParam<StreamCodec> {};
+
+TEST_P(Afgs1InH26x, DecodeEqualsApplyWithThePayloadsInOutputOrder) {
+    const bool hevc = GetParam() == StreamCodec::kH265;
+    if (std::system(hevc ? "command -v x265 >/dev/null 2>&1" : "command -v x264 >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "the encoder is not installed";
+    const fs::path dir = fresh_test_dir(hevc ? "afgs1-h265" : "afgs1-h264");
+    constexpr int w = 160, h = 128, frames = 8;
+    write_synthetic_y4m(dir / "src.y4m", w, h, frames, 8);
+    ASSERT_TRUE(run_or_fail(
+        hevc ? "x265 --log-level error --preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 --no-scenecut "
+               "--no-open-gop --input " + q(dir / "src.y4m") + " -o " + q(dir / "raw.es")
+             : "x264 --quiet --preset ultrafast --bframes 2 --keyint 8 --min-keyint 8 --no-scenecut -o " +
+                   q(dir / "raw.es") + " " + q(dir / "src.y4m") + " 2>/dev/null"));
+    // access unit k (decode order): one set for the picture, with params_for(k); unit 3: none
+    std::vector<std::vector<uint8_t>> payloads;
+    for (int k = 0; k < frames; k++) {
+        if (k == 3) {
+            payloads.emplace_back();
+            continue;
+        }
+        Afgs1Payload pl;
+        Afgs1ParamSet set;
+        set.params = params_for(k);
+        set.target = target(w, h, 8);
+        pl.sets = {set};
+        payloads.push_back(write_afgs1(pl));
+    }
+    const auto stream = insert_sei(read_bytes(dir / "raw.es"), GetParam(), [&](int au) {
+        AccessUnitSei s;
+        if (au < frames && !payloads[std::size_t(au)].empty())
+            s.prefix = {SeiMessage{kSeiPayloadT35, payloads[std::size_t(au)]}};
+        return s;
+    });
+    const fs::path coded = dir / (hevc ? "afgs1.hevc" : "afgs1.264");
+    write_bytes(coded, stream);
+    const StreamScan scan = scan_stream(stream.data(), stream.size(), GetParam());
+    const auto order = units_in_output_order(scan);
+    ASSERT_EQ(order.size(), std::size_t(frames));
+    bool reordered = false;
+    for (int k = 0; k < frames; k++) {
+        const int au = order[std::size_t(k)]->index;
+        reordered |= au != k;
+        if (!payloads[std::size_t(au)].empty())
+            write_bytes(dir / ("afgs1_" + std::to_string(k) + ".bin"), payloads[std::size_t(au)]);
+    }
+    ASSERT_TRUE(reordered) << "the stream has no B-frames: decode order would equal output order";
+
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(coded) + " -o " + q(dir / "decoded.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(coded) + " -o " + q(dir / "clean.yuv")));
+    const std::string picture = " --size " + std::to_string(w) + "x" + std::to_string(h) + " --pix-fmt yuv420p ";
+    ASSERT_TRUE(run_or_fail(tool() + " apply -q" + picture + "-i " + q(dir / "clean.yuv") + " --afgs1 " +
+                            q(dir / "afgs1_%d.bin") + " -o " + q(dir / "applied.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " params extract -q" + picture + q(coded) + " -o " + q(dir / "p.json")));
+    ASSERT_TRUE(run_or_fail(tool() + " apply -q" + picture + "-i " + q(dir / "clean.yuv") + " -p " + q(dir / "p.json") +
+                            " -o " + q(dir / "extracted.yuv")));
+    const auto decoded = read_bytes(dir / "decoded.yuv"), clean = read_bytes(dir / "clean.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(frames * w * h * 3 / 2));
+    EXPECT_TRUE(decoded == read_bytes(dir / "applied.yuv")) << "decode and apply --afgs1 differ";
+    EXPECT_TRUE(decoded == read_bytes(dir / "extracted.yuv")) << "decode and the extracted parameters differ";
+    // the picture of unit 3 has no grain, every other one has
+    const std::size_t fb = std::size_t(w) * h * 3 / 2;
+    for (int k = 0; k < frames; k++) {
+        const bool same = std::equal(decoded.begin() + long(fb * k), decoded.begin() + long(fb * (k + 1)),
+                                     clean.begin() + long(fb * k));
+        EXPECT_EQ(same, order[std::size_t(k)]->index == 3) << "picture " << k;
+    }
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, Afgs1InH26x, ::testing::Values(StreamCodec::kH265, StreamCodec::kH264),
+                         [](const auto& info) { return info.param == StreamCodec::kH265 ? "h265" : "h264"; });
