@@ -16,6 +16,7 @@
  * non-zero on any error. */
 #include <filmgrain/filmgrain.h>
 
+#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -203,6 +204,16 @@ static int run_stream(int model, const uint8_t* sei, size_t sei_length, int widt
     return status;
 }
 
+/* A picture dimension: digits only, 1..65536; 0 for anything else (atoi wraps and takes
+ * "12x" as 12). */
+static int dimension(const char* text) {
+    char* end = NULL;
+    errno = 0;
+    const long v = strtol(text, &end, 10);
+    if (errno || end == text || *end || v < 1 || v > 65536) return 0;
+    return (int)v;
+}
+
 int main(int argc, char** argv) {
     if (argc != 1 && argc != 5 && argc != 6) {
         fprintf(stderr, "usage: %s [IN.yuv WIDTH HEIGHT OUT.yuv [sei_payload.bin]]\n", argv[0]);
@@ -226,7 +237,8 @@ int main(int argc, char** argv) {
         fprintf(stderr, "decoder_hook: cannot open %s or %s\n", argv[1], argv[4]);
         return 1;
     }
-    int status = run_stream(MODEL_FGC, (const uint8_t*)params, params_length, atoi(argv[2]), atoi(argv[3]), fin, fout, 0);
+    const int width = dimension(argv[2]), height = dimension(argv[3]);
+    int status = run_stream(MODEL_FGC, (const uint8_t*)params, params_length, width, height, fin, fout, 0);
     free(params);
     fclose(fin);
     if (fclose(fout) != 0) status = 1;

@@ -33,7 +33,8 @@ FgcFlavour parse_flavour(const std::string& s) {
     if (s == "vtm" || s == "hm") return FgcFlavour::kVtm;
     if (s == "vfgs") return FgcFlavour::kVfgs;
     if (s == "tr") return FgcFlavour::kTr;
-    throw Error(ErrorCode::kInvalidArgument, "--flavour '" + s + "' is not known (allowed rdd5, vtm, vfgs, tr)");
+    if (s == "ffmpeg") return FgcFlavour::kFfmpeg;
+    throw Error(ErrorCode::kInvalidArgument, "--flavour '" + s + "' is not known (allowed rdd5, ffmpeg, vtm, vfgs, tr)");
 }
 
 std::string flavour_name(FgcFlavour f) {
@@ -42,8 +43,19 @@ std::string flavour_name(FgcFlavour f) {
         case FgcFlavour::kVtm: return "vtm";
         case FgcFlavour::kVfgs: return "vfgs";
         case FgcFlavour::kTr: return "tr";
+        case FgcFlavour::kFfmpeg: return "ffmpeg";
     }
     return "?";
+}
+
+Av1ColorInfo av1_color_of(const PixelFormat& format, int matrix_coefficients) {
+    Av1ColorInfo c;
+    c.bit_depth = format.bit_depth;
+    c.mono_chrome = format.chroma == ChromaFormat::k400;
+    c.subsampling_x = chroma_shift_x(format.chroma);
+    c.subsampling_y = chroma_shift_y(format.chroma);
+    c.matrix_coefficients = matrix_coefficients;
+    return c;
 }
 
 }  // namespace filmgrain::cli

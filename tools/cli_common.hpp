@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/frame_buffer.hpp"
+#include "filmgrain/av1_params.hpp"
 #include "filmgrain/fgc_params.hpp"
 #include "io/video_file.hpp"
 
@@ -20,6 +21,9 @@ struct RawVideoOptions {
 
 FgcFlavour parse_flavour(const std::string& s);
 std::string flavour_name(FgcFlavour f);
+// The AV1 picture facts (color_config()) of a pixel format, as the tool's AV1 parameter files
+// carry them.
+Av1ColorInfo av1_color_of(const PixelFormat& format, int matrix_coefficients = 2);
 
 void register_apply(CLI::App& app);
 void register_render(CLI::App& app);

@@ -170,11 +170,7 @@ int run_analyze(const AnalyzeOptions& o) {
     } else {
         const analysis::Av1Estimate e = analyzer->estimate_av1();
         av1_frames = av1_per_frame(e.params, k);
-        Av1ColorInfo color;
-        color.bit_depth = fmt.bit_depth;
-        color.mono_chrome = fmt.chroma == ChromaFormat::k400;
-        color.subsampling_x = chroma_shift_x(fmt.chroma);
-        color.subsampling_y = chroma_shift_y(fmt.chroma);
+        const Av1ColorInfo color = av1_color_of(fmt);
         params_text = av1_params_json_text(av1_frames, color);
         for (int c = 0; c < nplanes; c++) {
             const auto& r = e.components[c];

@@ -112,6 +112,28 @@ std::vector<std::optional<Afgs1Payload>> afgs1_in_output_order(const std::string
     return out;
 }
 
+// The visible picture of an uncropped decoder picture (libav::DecodedFrame crop fields).
+FrameView conformance_window(const FrameView& coded, const libav::DecodedFrame& f) {
+    if (f.crop_left == 0 && f.crop_top == 0 && f.crop_right == 0 && f.crop_bottom == 0) return coded;
+    if (f.crop_left < 0 || f.crop_top < 0 || f.crop_right < 0 || f.crop_bottom < 0 ||
+        f.crop_left + f.crop_right >= coded.width || f.crop_top + f.crop_bottom >= coded.height)
+        throw Error(ErrorCode::kMalformedPayload,
+                    "frame " + std::to_string(f.index) + ": conformance window " + std::to_string(f.crop_left) + "," +
+                        std::to_string(f.crop_top) + "," + std::to_string(f.crop_right) + "," +
+                        std::to_string(f.crop_bottom) + " (left, top, right, bottom) leaves nothing of the " +
+                        std::to_string(coded.width) + "x" + std::to_string(coded.height) + " coded picture");
+    FrameView v = coded;
+    v.width = coded.width - f.crop_left - f.crop_right;
+    v.height = coded.height - f.crop_top - f.crop_bottom;
+    for (int p = 0; p < v.plane_count(); p++) {
+        const int sx = p ? chroma_shift_x(v.format) : 0, sy = p ? chroma_shift_y(v.format) : 0;
+        v.planes[p].data += coded.planes[p].stride * (f.crop_top >> sy) + std::ptrdiff_t(f.crop_left >> sx) * coded.bytes_per_sample();
+        v.planes[p].width = plane_width(v.format, p, v.width);
+        v.planes[p].height = plane_height(v.format, p, v.height);
+    }
+    return v;
+}
+
 int run_decode(const DecodeOptions& o) {
     const FgcFlavour flavour = parse_flavour(o.flavour);
     bool y4m = o.output == "-" || has_y4m_extension(o.output);
@@ -120,7 +142,10 @@ int run_decode(const DecodeOptions& o) {
             throw Error(ErrorCode::kInvalidArgument, "--format '" + o.format + "' is not known (allowed y4m, yuv)");
         y4m = o.format == "y4m";
     }
-    libav::VideoDecoder decoder(o.input, o.threads);
+    // ffmpeg flavour: FFmpeg adds FGC grain to the coded picture and crops after, so partial
+    // 8x8 blocks at the right and bottom average coded samples beyond the visible picture.
+    const bool grain_before_crop = flavour == FgcFlavour::kFfmpeg && !o.no_grain;
+    libav::VideoDecoder decoder(o.input, o.threads, grain_before_crop);
     const libav::StreamDescription& d = decoder.description();
 
     // FFmpeg exports each picture's grain already resolved (persistence, AV1 reference
@@ -140,35 +165,38 @@ int run_decode(const DecodeOptions& o) {
     };
     // damage is reported even with -q: it is data lost, not progress
     decoder.on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
+    // only H.26x carries AFGS1 in SEI (AV1 grain comes exported): no second read of other files
+    const bool h26x = d.codec_name == "h264" || d.codec_name == "hevc" || d.codec_name == "vvc";
     const std::vector<std::optional<Afgs1Payload>> afgs1 =
-        o.no_grain ? std::vector<std::optional<Afgs1Payload>>{} : afgs1_in_output_order(o.input, warn);
+        o.no_grain || !h26x ? std::vector<std::optional<Afgs1Payload>>{} : afgs1_in_output_order(o.input, warn);
     // Pictures are not copied out of the decoder: the synthesis writes its output frame
     // straight from the decoder's picture (as dav1d does), and pictures without grain are
     // written from the decoder's picture itself.
     while (decoder.next(frame, /*copy_picture=*/false)) {
+        const FrameView coded_src = frame.decoded, coded_dst = frame.picture.view();
+        const FrameView src = conformance_window(coded_src, frame), v = conformance_window(coded_dst, frame);
         if (!writer) {
-            info.width = frame.picture.width();
-            info.height = frame.picture.height();
+            info.width = src.width;
+            info.height = src.height;
             info.format = frame.picture.format();
             info.fps_num = d.fps_num;
             info.fps_den = d.fps_den;
             info.y4m = y4m;
             writer = std::make_unique<VideoWriter>(o.output, info, y4m);
-        } else if (frame.picture.width() != info.width || frame.picture.height() != info.height ||
+        } else if (src.width != info.width || src.height != info.height ||
                    frame.picture.format().chroma != info.format.chroma ||
                    frame.picture.format().bit_depth != info.format.bit_depth) {
             // a damaged header, or a stream that really changes size: Y4M and raw YUV hold one
             // size and format, so the picture is left out like one the decoder refused
             warn("frame " + std::to_string(frame.index) +
                  (frame.pts ? " (pts " + std::to_string(*frame.pts) + ")" : std::string()) + ": " +
-                 std::to_string(frame.picture.width()) + "x" + std::to_string(frame.picture.height()) + " " +
+                 std::to_string(src.width) + "x" + std::to_string(src.height) + " " +
                  pix_fmt_name(frame.picture.format()) + ", but the output holds " + std::to_string(info.width) +
                  "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format) + " (" +
                  (y4m ? "Y4M" : "raw YUV") + " has one size and format); skipped");
             skipped_frames++;
             continue;
         }
-        const FrameView src = frame.decoded, v = frame.picture.view();
         if (!o.no_grain && !frame.av1 && !frame.fgc && std::size_t(frame.index) < afgs1.size() &&
             afgs1[std::size_t(frame.index)]) {
             // the set AFGS1 7.3 selects for this picture, as resolved AV1 parameters
@@ -203,9 +231,12 @@ int run_decode(const DecodeOptions& o) {
             // FFmpeg's seed is the RDD 5 picture offset (see the top of this file)
             fi.ids = FgcPictureIds{int(frame.seed), 0};
         }
-        session.apply(src, v, &fi);
+        if (frame.fgc && grain_before_crop)
+            session.apply(coded_src, coded_dst, &fi);
+        else
+            session.apply(src, v, &fi);
         with_grain++;
-        writer->write(frame.picture);
+        writer->write(v);
         n++;
         progress.frame_done(n);
     }
@@ -247,7 +278,7 @@ void register_decode(CLI::App& app) {
         ->required();
     sub->add_option("--output,-o", o->output, "output: .y4m, .yuv (raw planar), or - for Y4M on stdout")->required();
     sub->add_option("--format", o->format, "y4m or yuv (default: from the output name; Y4M for -)");
-    sub->add_option("--flavour", o->flavour, "FGC SEI model: rdd5, vtm or vfgs")->capture_default_str();
+    sub->add_option("--flavour", o->flavour, "FGC SEI model: rdd5, ffmpeg (what FFmpeg >= 6.1 outputs: grain on the uncropped picture), vtm or vfgs")->capture_default_str();
     sub->add_flag("--no-grain", o->no_grain,
                   "write the decoded pictures without film grain (the same decoding and writing, no synthesis: "
                   "the baseline tools/bench-compare subtracts)");

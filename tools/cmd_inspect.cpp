@@ -81,14 +81,7 @@ int run_extract_afgs1(const InspectOptions& o, const std::vector<std::optional<A
                 f.grain = sel->params;
                 f.grain.update_grain = 1;
                 f.grain.chroma_point_counts_signalled = true;
-                Av1ColorInfo c;
-                c.bit_depth = fmt.bit_depth;
-                c.mono_chrome = fmt.chroma == ChromaFormat::k400;
-                c.subsampling_x = fmt.chroma == ChromaFormat::k420 || fmt.chroma == ChromaFormat::k422;
-                c.subsampling_y = fmt.chroma == ChromaFormat::k420;
-                if (c.mono_chrome) c.subsampling_x = c.subsampling_y = 1;
-                c.matrix_coefficients = sel->matrix_coefficients;
-                f.color = c;
+                f.color = av1_color_of(fmt, sel->matrix_coefficients);
             }
         frames.push_back(f);
     }

@@ -239,11 +239,7 @@ Afgs1SetTarget target_for(const Av1FrameParams& f, const ConvertOptions& o, Note
     } else if (!o.pix_fmt.empty()) {
         RawVideoOptions r;
         r.pix_fmt = o.pix_fmt;
-        const PixelFormat pf = r.to_info().format;
-        c.bit_depth = pf.bit_depth;
-        c.mono_chrome = pf.chroma == ChromaFormat::k400;
-        c.subsampling_x = chroma_shift_x(pf.chroma);
-        c.subsampling_y = chroma_shift_y(pf.chroma);
+        c = av1_color_of(r.to_info().format, c.matrix_coefficients);
         known = true;
     } else {
         notes.add("the picture format (no --pix-fmt and none in the input: 4:2:0 assumed, bit depth not signalled)");

@@ -11,8 +11,16 @@ namespace filmgrain {
 enum class FgcCodec : int { kAvc = 0, kHevc = 1, kVvc = 2 };
 
 // Which bit-exact behaviour of the frequency-filtering model to reproduce.
-//  kRdd5: SMPTE RDD 5 (HM-2020 Dolby implementation; FFmpeg >= 6.1 h274.c): RDD 5 matrix,
-//         seed from POC + (idr_pic_id << 5), 8x8 adaptation at every picture size.
+//  kRdd5: SMPTE RDD 5 (HM-2020 Dolby implementation): RDD 5 matrix, seed from
+//         POC + (idr_pic_id << 5), 8x8 adaptation at every picture size.
+//  kFfmpeg: what FFmpeg >= 6.1 (h274.c) outputs: rdd5 except that cut-offs not signalled
+//         are 0 (clipped to 2), a block edge whose right block matches no interval is not
+//         deblocked (one whose left block matches none is, against zero grain), cut-offs
+//         are clipped to 2..14, intervals may overlap (the first wins) and blending_mode_id
+//         and a separate colour description are ignored. FFmpeg adds grain to the coded
+//         picture before the conformance-window crop, so partial edge blocks average
+//         samples of the coded picture: give the decoder's uncropped picture and crop after
+//         (filmgrain decode does).
 //  kVtm:  HM/VTM master (JVET-X0048): VVC DCT-2 matrix, POC-only seed, 8/16/32 blocks by size.
 //  kVfgs: InterDigital VersatileFilmGrain (TR 23002-9 7.5): sample-based adaptation.
 //  kTr:   no reference to be bit-exact with: the rdd5 arithmetic extended with what TR 23002-9
@@ -20,7 +28,7 @@ enum class FgcCodec : int { kAvc = 0, kHevc = 1, kVvc = 2 };
 //         model (film_grain_model_id 1), multiplicative blending (blending_mode_id 1) and a
 //         film grain bit depth of its own (separate_colour_description_present_flag 1).
 //         Parameter sets the rdd5 flavour accepts give the rdd5 output bit for bit.
-enum class FgcFlavour : int { kRdd5 = 0, kVtm = 1, kVfgs = 2, kTr = 3 };
+enum class FgcFlavour : int { kRdd5 = 0, kVtm = 1, kVfgs = 2, kTr = 3, kFfmpeg = 4 };
 
 // How an FGC SEI's persistence is honoured for pictures that carry no SEI.
 //  kReference: as HM does it: a picture without an SEI reuses the last SEI whatever its

@@ -53,11 +53,13 @@ FG_API const char* fg_status_name(int status); /* fg_status -> "FG_ERROR_INVALID
 
 /* Which bit-exact behaviour of the FGC SEI frequency-filtering model to reproduce. */
 typedef enum fg_flavour {
-    FG_FLAVOUR_RDD5 = 0, /* SMPTE RDD 5 / FFmpeg: seed from POC + (idr_pic_id << 5) */
+    FG_FLAVOUR_RDD5 = 0, /* SMPTE RDD 5 (HM-2020): seed from POC + (idr_pic_id << 5) */
     FG_FLAVOUR_VTM = 1,  /* HM/VTM reference software: POC-only seed, block size by coded size */
     FG_FLAVOUR_VFGS = 2, /* InterDigital VersatileFilmGrain (TR 23002-9 7.5) */
-    FG_FLAVOUR_TR = 3    /* rdd5 plus what TR 23002-9 clause 7 allows beyond the references:
+    FG_FLAVOUR_TR = 3,   /* rdd5 plus what TR 23002-9 clause 7 allows beyond the references:
                             auto-regressive model, multiplicative blending, film grain bit depth */
+    FG_FLAVOUR_FFMPEG = 4 /* what FFmpeg >= 6.1 outputs (rdd5 with FFmpeg's departures); pass the
+                             decoder's uncropped picture and crop after, as FFmpeg does */
 } fg_flavour;
 
 /* How an FGC SEI persists over pictures that carry none. */

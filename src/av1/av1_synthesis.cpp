@@ -1,6 +1,7 @@
 // AV1 spec 7.18.3 (film grain synthesis process), stripe-driven.
 #include "av1/av1_synthesis.hpp"
 
+
 #include <algorithm>
 #include <cstring>
 #include <string>
@@ -8,6 +9,7 @@
 #include "av1/block_synthesis.hpp"
 #include "av1/grain_template_optimized.hpp"
 #include "av1/stripe_block_origins.hpp"
+#include "core/plane_layout.hpp"
 #include "av1/params_validation.hpp"
 #include "av1/simd/av1_kernels.hpp"
 #include "core/thread_pool.hpp"
@@ -338,12 +340,9 @@ void check_frame_view(const FrameView& v, const char* name) {
                                                          std::to_string(p.width) + "x" + std::to_string(p.height) +
                                                          ", smaller than " + std::to_string(pw) + "x" +
                                                          std::to_string(ph));
-        const long long row_bytes = static_cast<long long>(pw) * v.bytes_per_sample();
-        if (ph > 1 && (p.stride < 0 ? -p.stride : p.stride) < row_bytes)
-            throw Error(ErrorCode::kInvalidArgument, n + ".planes[" + std::to_string(pl) + "].stride = " +
-                                                         std::to_string(p.stride) + " is smaller than a row (" +
-                                                         std::to_string(row_bytes) + " bytes)");
     }
+    // strides (at least a row, within PTRDIFF_MAX, no negation of PTRDIFF_MIN) and 16-bit alignment
+    check_plane_layout(v, n);
 }
 
 namespace {

@@ -14,7 +14,6 @@
 
 #include "core/thread_pool.hpp"
 #include "fgc/params_resolution.hpp"
-#include "fgc/plane_layout.hpp"
 #include "filmgrain/filmgrain.hpp"
 #include "metadata/fgc_sei.hpp"
 
@@ -83,8 +82,8 @@ T sized_copy(const T* in, std::size_t min_size, const T& defaults, const char* n
 
 filmgrain::SessionOptions to_options(const fg_options& o) {
     filmgrain::SessionOptions c;
-    if (o.flavour < FG_FLAVOUR_RDD5 || o.flavour > FG_FLAVOUR_TR)
-        invalid(filmgrain::out_of_range_message("options.flavour", o.flavour, 0, 3));
+    if (o.flavour < FG_FLAVOUR_RDD5 || o.flavour > FG_FLAVOUR_FFMPEG)
+        invalid(filmgrain::out_of_range_message("options.flavour", o.flavour, 0, 4));
     if (o.pattern_interpolation != 0 && o.pattern_interpolation != 1)
         invalid(filmgrain::out_of_range_message("options.pattern_interpolation", o.pattern_interpolation, 0, 1));
     if (o.persistence < FG_PERSISTENCE_REFERENCE || o.persistence > FG_PERSISTENCE_SEMANTIC)
@@ -204,9 +203,7 @@ filmgrain::FrameView to_view(const fg_frame* f, const char* name) {
         v.planes[p].width = filmgrain::plane_width(v.format, p, v.width);
         v.planes[p].height = filmgrain::plane_height(v.format, p, v.height);
     }
-    // strides[p]: at least a row, the plane within PTRDIFF_MAX bytes (computed without
-    // negating PTRDIFF_MIN); bit_depth > 8: even planes[p] and strides[p].
-    filmgrain::fgc::check_plane_layout(v, n);
+    // strides and alignment: the session checks them (check_plane_layout), naming `n`
     return v;
 }
 

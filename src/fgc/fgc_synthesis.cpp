@@ -11,7 +11,6 @@
 #include "fgc/block_randomization.hpp"
 #include "fgc/deblocking.hpp"
 #include "fgc/local_adaptation.hpp"
-#include "fgc/plane_layout.hpp"
 #include "core/thread_pool.hpp"
 #include "filmgrain/error.hpp"
 
@@ -28,7 +27,9 @@ int default_block_size(FgcFlavour flavour, int luma_width, int luma_height) {
 FgcFrameSynthesis::FgcFrameSynthesis(FgcFlavour flavour, int block_size, int threads, Kernels kernels)
     : flavour_(flavour),
       block_size_(block_size),
-      kernels_(kernels),
+      // ffmpeg: the scalar stages only. Its deblocking depends on which blocks got grain,
+      // which the fused deblocking + blending kernels do not know.
+      kernels_(flavour == FgcFlavour::kFfmpeg ? Kernels::kReference : kernels),
       cache_(flavour == FgcFlavour::kVtm ? TemplateTransform::kVvcDct2 : TemplateTransform::kRdd5Matrix, block_size) {
     if (block_size != 8 && block_size != 16 && block_size != 32)
         throw Error(ErrorCode::kInvalidArgument, "block size " + std::to_string(block_size) + " is not 8, 16 or 32");
@@ -44,7 +45,7 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     std::size_t n = 0;
     for (const auto& st : states_) n += st.capacity() * sizeof(uint32_t);
     for (const auto& s : scratch_)
-        n += s.stripe.capacity() * sizeof(int32_t) + s.sums.capacity() * sizeof(uint32_t) +
+        n += s.stripe.capacity() * sizeof(int32_t) + s.has_grain.capacity() + s.sums.capacity() * sizeof(uint32_t) +
              s.blocks.capacity() * sizeof(const int16_t*) + s.narrow_blocks.capacity() * sizeof(const int8_t*) + s.places.capacity() * sizeof(int32_t) +
              s.band.capacity() * sizeof(int16_t) + s.narrow_band.capacity() +
              s.scaled.capacity() * sizeof(int16_t) + s.copies.capacity() * sizeof(simd::BlockCopy);
@@ -67,43 +68,6 @@ void copy_plane(const PlaneView& src, const PlaneView& dst, int bytes_per_sample
     for (int y = 0; y < src.height; y++) std::memmove(dst.data + dst.stride * y, src.data + src.stride * y, row_bytes);
 }
 
-void check_plane_layout(const FrameView& v, const std::string& name) {
-    if (v.width <= 0 || v.height <= 0) return;
-    const int bps = v.bytes_per_sample();
-    for (int p = 0; p < v.plane_count(); p++) {
-        const PlaneView& pl = v.planes[p];
-        const std::string idx = "[" + std::to_string(p) + "]";
-        const unsigned long long rows = static_cast<unsigned long long>(plane_height(v.format, p, v.height));
-        const unsigned long long row = static_cast<unsigned long long>(plane_width(v.format, p, v.width)) * unsigned(bps);
-        if (rows > 1) {
-            // The magnitude in unsigned arithmetic: -PTRDIFF_MIN does not fit a ptrdiff_t.
-            const unsigned long long mag =
-                pl.stride < 0 ? 0ULL - static_cast<unsigned long long>(pl.stride) : static_cast<unsigned long long>(pl.stride);
-            const unsigned long long most = (static_cast<unsigned long long>(PTRDIFF_MAX) - row) / (rows - 1);
-            if (mag < row || mag > most)
-                throw Error(ErrorCode::kInvalidArgument,
-                            name + ".strides" + idx + " = " + std::to_string(pl.stride) + " is out of range (allowed " +
-                                std::to_string(row) + ".." + std::to_string(most) + " or -" + std::to_string(most) +
-                                "..-" + std::to_string(row) + ": at least a row of the plane, " + std::to_string(row) +
-                                " bytes, and its " + std::to_string(rows) + " rows within PTRDIFF_MAX bytes)");
-        }
-        if (bps == 2) {
-            const auto address = reinterpret_cast<std::uintptr_t>(pl.data);
-            if (address & 1) {
-                char hex[32];
-                std::snprintf(hex, sizeof hex, "%#llx", static_cast<unsigned long long>(address));
-                throw Error(ErrorCode::kInvalidArgument,
-                            name + ".planes" + idx + " = " + hex + " is an odd address: " + std::to_string(v.bit_depth) +
-                                "-bit samples are uint16_t and must be 2-byte aligned (allowed: even addresses)");
-            }
-            if (rows > 1 && (pl.stride & 1))
-                throw Error(ErrorCode::kInvalidArgument,
-                            name + ".strides" + idx + " = " + std::to_string(pl.stride) + " is odd: " +
-                                std::to_string(v.bit_depth) +
-                                "-bit samples are uint16_t and every row must be 2-byte aligned (allowed: even strides)");
-        }
-    }
-}
 
 // Scalar reference: one randomization-block row (stripe) built block by block with the
 // reference stages.
@@ -124,6 +88,13 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
     std::vector<int32_t>& stripe = scratch.stripe;
     if (stripe.size() < std::size_t(stride) * rb) stripe.resize(std::size_t(stride) * rb);
     std::fill(stripe.begin(), stripe.begin() + std::ptrdiff_t(stride) * rb, 0);
+    // ffmpeg: which 8x8 blocks of the stripe got grain, per block row (deblocking depends on it)
+    const bool ffmpeg = flavour_ == FgcFlavour::kFfmpeg;
+    const int block_columns = blocks_x * (rb / bs);
+    std::vector<uint8_t>& has_grain = scratch.has_grain;
+    if (ffmpeg) {
+        std::fill(has_grain.begin(), has_grain.begin() + std::ptrdiff_t(block_columns) * 2, uint8_t(0));
+    }
     for (int bx = 0; bx < blocks_x; bx++) {
         const BlockOffset off = block_offset_from_state(states[std::size_t(by) * blocks_x + bx], bs);
         const int sub_count = bs == 8 ? 4 : 1;
@@ -134,13 +105,15 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
             int cols = bs;
             if (rdd5) {
                 if (x0 >= w || y0 >= h) continue;
-                avg = block_average_inside<Pixel>(src, x0, y0, bs, bit_depth);
+                avg = ffmpeg ? block_average_zero_outside<Pixel>(src, x0, y0, bs, bit_depth)
+                             : block_average_inside<Pixel>(src, x0, y0, bs, bit_depth);
                 cols = std::min(bs, w - x0);  // HM-2020 writes grain only inside the picture
             } else {
                 avg = block_average_replicated<Pixel>(src, x0, y0, bs, bit_depth);
             }
             const int iv = comp.interval_of_intensity[avg];
             if (iv < 0) continue;  // no interval: this block gets no grain
+            if (ffmpeg) has_grain[std::size_t(yo / bs) * block_columns + x0 / bs] = 1;
             const ResolvedInterval& ri = comp.intervals[iv];
             const GrainTemplate& t = cache_.get(ri.cutoff_h, ri.cutoff_v);
             const int32_t scale = off.sign * ri.scale;
@@ -152,7 +125,13 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
         }
     }
     const int rows = std::min(rb, h - by * rb);
-    deblock_stripe_vertical_edges(stripe.data(), stride, rows, w, bs);
+    if (ffmpeg) {
+        for (int yo = 0; yo < rows; yo += bs)
+            deblock_stripe_edges_before_grain(stripe.data() + std::size_t(yo) * stride, stride, std::min(bs, rows - yo),
+                                              w, bs, has_grain.data() + std::size_t(yo / bs) * block_columns);
+    } else {
+        deblock_stripe_vertical_edges(stripe.data(), stride, rows, w, bs);
+    }
     for (int l = 0; l < rows; l++) {
         const int y = by * rb + l;
         blend_row_additive<Pixel>(src.row<const Pixel>(y), dst.row<Pixel>(y), stripe.data() + std::size_t(l) * stride,
@@ -400,6 +379,7 @@ void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, c
     for (auto& s : scratch_) {
         if (kernels_ == Kernels::kReference) {
             grow(s.stripe, std::size_t(blocks_x * rb + 2) * rb);
+            if (flavour_ == FgcFlavour::kFfmpeg) grow(s.has_grain, std::size_t(blocks_x) * 4);
         } else {
             grow(s.sums, std::size_t(blocks_x) * 4);
             grow(s.blocks, std::size_t(blocks_x) * 4);

@@ -60,6 +60,7 @@ private:
     // One thread's stripe buffers, grown on the calling thread in apply() and reused.
     struct Scratch {
         std::vector<int32_t> stripe;          // reference path
+        std::vector<uint8_t> has_grain;       // ... ffmpeg flavour: the blocks that got grain
         std::vector<uint32_t> sums;           // block sums of the stripe's block rows
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
         std::vector<const int8_t*> narrow_blocks;  // ... when the tables are int8

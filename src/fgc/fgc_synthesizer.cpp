@@ -1,7 +1,7 @@
 #include "fgc/fgc_synthesizer.hpp"
 
 #include "core/frame_buffer.hpp"
-#include "fgc/plane_layout.hpp"
+#include "core/plane_layout.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain {
@@ -19,7 +19,7 @@ struct FgcSynthesizer::Active {
 
 FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
     if (options.flavour == FgcFlavour::kVfgs)
-        throw Error(ErrorCode::kInvalidArgument, "FgcSynthesizer handles the rdd5, vtm and tr flavours; vfgs has its own");
+        throw Error(ErrorCode::kInvalidArgument, "FgcSynthesizer handles the rdd5, ffmpeg, vtm and tr flavours; vfgs has its own");
     if (options.block_size != 0 && options.block_size != 8 && options.block_size != 16 && options.block_size != 32)
         throw Error(ErrorCode::kInvalidArgument, "block_size = " + std::to_string(options.block_size) +
                                                      " is not allowed (allowed 0 = flavour default, 8, 16, 32)");
@@ -27,9 +27,13 @@ FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
     if (n != 0 && n != 8 && n != 16 && n != 32)
         throw Error(ErrorCode::kInvalidArgument, "single-line blocks of " + std::to_string(n) +
                                                      "x1 are not allowed (allowed 0 = square blocks, 8, 16, 32)");
-    if (n != 0 && options.flavour == FgcFlavour::kRdd5)
+    if (n != 0 && (options.flavour == FgcFlavour::kRdd5 || options.flavour == FgcFlavour::kFfmpeg))
         throw Error(ErrorCode::kInvalidArgument,
                     "single-line blocks are an option of the vtm and tr flavours (RDD 5 fixes 8x8 blocks)");
+    if (options.flavour == FgcFlavour::kFfmpeg && options.block_size != 0 && options.block_size != 8)
+        throw Error(ErrorCode::kInvalidArgument, "block_size = " + std::to_string(options.block_size) +
+                                                     " is not allowed by the ffmpeg flavour (allowed 0, 8: FFmpeg "
+                                                     "fixes 8x8 blocks)");
     if (n != 0 && options.block_size != 0 && options.block_size != n)
         throw Error(ErrorCode::kInvalidArgument, "single-line blocks of " + std::to_string(n) + "x1 set the block size to " +
                                                      std::to_string(n) + ", not " + std::to_string(options.block_size));
@@ -107,8 +111,8 @@ void check_frame(const FrameView& src, const FrameView& dst) {
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("bit_depth", src.bit_depth, 8, 16));
     if (dst.width != src.width || dst.height != src.height || dst.bit_depth != src.bit_depth || dst.format != src.format)
         throw Error(ErrorCode::kInvalidArgument, "output frame does not match the input frame's size, bit depth or format");
-    fgc::check_plane_layout(src, "src");
-    fgc::check_plane_layout(dst, "dst");
+    check_plane_layout(src, "src");
+    check_plane_layout(dst, "dst");
     for (int c = 0; c < src.plane_count(); c++) {
         const int pw = plane_width(src.format, c, src.width), ph = plane_height(src.format, c, src.height);
         if (!src.planes[c].data || !dst.planes[c].data)

@@ -111,7 +111,16 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
     }
     check_fgc_syntax_ranges(p, fmt.bit_depth);
     const bool tr = flavour == FgcFlavour::kTr;
-    if (!tr) {
+    // FFmpeg's h274.c (7.1) checks only film_grain_model_id; it synthesizes every other
+    // signalling with the additive model at the picture's bit depth, as players then show it.
+    const bool ffmpeg = flavour == FgcFlavour::kFfmpeg;
+    if (ffmpeg) {
+        if (p.film_grain_model_id != 0)
+            throw Error(ErrorCode::kUnsupported,
+                        "film_grain_model_id = " + std::to_string(p.film_grain_model_id) +
+                            " is not supported by the ffmpeg flavour (allowed 0..0: FFmpeg outputs the picture "
+                            "without grain)");
+    } else if (!tr) {
         const std::string name = flavour == FgcFlavour::kVtm ? "vtm" : "rdd5";
         if (p.film_grain_model_id != 0)
             throw Error(ErrorCode::kUnsupported,
@@ -136,9 +145,9 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
     }
     const int model = p.film_grain_model_id;
     r.model_id = model;
-    r.blending_mode_id = p.blending_mode_id;
+    r.blending_mode_id = ffmpeg ? 0 : p.blending_mode_id;
     for (int c = 0; c < 3; c++)
-        r.grain_bit_depth[c] = !p.separate_colour_description_present_flag ? fmt.bit_depth
+        r.grain_bit_depth[c] = ffmpeg || !p.separate_colour_description_present_flag ? fmt.bit_depth
                                : c == 0 ? p.film_grain_bit_depth_luma_minus8 + 8
                                         : p.film_grain_bit_depth_chroma_minus8 + 8;
 
@@ -148,7 +157,9 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
     // HM-2020 checks the scale factor always; HM master only when some component has grain.
     // tr: the synthesis shift is log2_scale_factor + 6 - model_id (auto-regressive templates
     // carry one bit more, as in VFGS), and both models keep it in 8..13.
-    if (flavour == FgcFlavour::kRdd5 || tr || any_present)
+    // ffmpeg: FFmpeg takes any log2_scale_factor, but below 2 its int8 grain wraps (an
+    // overflow, not a behaviour to reproduce), so the flavour keeps RDD 5's range.
+    if (flavour == FgcFlavour::kRdd5 || ffmpeg || tr || any_present)
         if (p.log2_scale_factor < 2 + model || p.log2_scale_factor > 7 + model)
             invalid(out_of_range_message("log2_scale_factor", p.log2_scale_factor, 2 + model, 7 + model) +
                     (model ? " (film_grain_model_id 1)" : ""));
@@ -156,7 +167,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
 
     for (int c = 0; c < num_comp; c++) {
         const auto& m = p.comp[c];
-        if (model == 0 && m.comp_model_present_flag && m.num_model_values_minus1 + 1 > 3)
+        if (model == 0 && !ffmpeg && m.comp_model_present_flag && m.num_model_values_minus1 + 1 > 3)
             throw Error(ErrorCode::kUnsupported,
                         out_of_range_message("num_model_values_minus1[" + std::to_string(c) + "]",
                                              m.num_model_values_minus1, 0, 2) +
@@ -179,11 +190,17 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
             const std::string idx = "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
-            if (iv.intensity_interval_lower_bound > iv.intensity_interval_upper_bound)
+            if (ffmpeg) {
+                // FFmpeg takes the first signalled interval that holds the block average: an
+                // empty interval (lower > upper) holds none, overlaps go to the earlier one.
+                for (int v = iv.intensity_interval_lower_bound; v <= iv.intensity_interval_upper_bound; v++)
+                    if (rc.interval_of_intensity[v] < 0) rc.interval_of_intensity[v] = int16_t(i);
+            } else if (iv.intensity_interval_lower_bound > iv.intensity_interval_upper_bound) {
                 invalid("intensity_interval_lower_bound" + idx + " = " + std::to_string(iv.intensity_interval_lower_bound) +
                         " exceeds intensity_interval_upper_bound" + idx + " = " +
                         std::to_string(iv.intensity_interval_upper_bound) + " (allowed lower <= upper)");
-            for (int v = iv.intensity_interval_lower_bound; v <= iv.intensity_interval_upper_bound; v++) {
+            }
+            for (int v = iv.intensity_interval_lower_bound; !ffmpeg && v <= iv.intensity_interval_upper_bound; v++) {
                 if (rc.interval_of_intensity[v] >= 0)
                     invalid("intensity interval " + std::to_string(i) + " of component " + std::to_string(c) + " [" +
                             std::to_string(iv.intensity_interval_lower_bound) + ", " +
@@ -212,6 +229,27 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                 if (ri.ar[4] < 0 || ri.ar[4] > 4 * one)
                     invalid(out_of_range_message(cmv(c, int(i), 4), ri.ar[4], 0, 4 * one) +
                             " (an aspect ratio from 0 to 4 in units of 2^-log2_scale_factor)");
+                rc.intervals.push_back(ri);
+                continue;
+            }
+            if (ffmpeg) {
+                // FFmpeg infers no default: cut-offs that are not signalled stay 0. It
+                // converts 4:2:0 chroma like RDD 5 and then clips the cut-offs to 2..14
+                // where RDD 5 refuses values outside it.
+                int h = nmv >= 2 ? iv.comp_model_value[1] : 0, v = nmv >= 3 ? iv.comp_model_value[2] : 0;
+                if (c > 0 && fmt.chroma == ChromaFormat::k420) {
+                    ri.scale >>= 1;
+                    h <<= 1;
+                    v <<= 1;
+                } else if (c > 0 && fmt.chroma == ChromaFormat::k422) {
+                    ri.scale = (ri.scale * 181) >> 8;
+                    h <<= 1;
+                }
+                ri.cutoff_h = std::clamp(h, 2, 14);
+                ri.cutoff_v = std::clamp(v, 2, 14);
+                auto pair = std::make_pair(ri.cutoff_h, ri.cutoff_v);
+                if (std::find(r.cutoff_pairs.begin(), r.cutoff_pairs.end(), pair) == r.cutoff_pairs.end())
+                    r.cutoff_pairs.push_back(pair);
                 rc.intervals.push_back(ri);
                 continue;
             }

@@ -269,7 +269,7 @@ void VideoDecoder::State::feed() {
     }
 }
 
-VideoDecoder::VideoDecoder(const std::string& path, int threads) : s_(std::make_unique<State>()) {
+VideoDecoder::VideoDecoder(const std::string& path, int threads, bool uncropped) : s_(std::make_unique<State>()) {
     av_log_set_level(AV_LOG_ERROR);
     av_log_set_callback(capture_log);
     take_log();
@@ -304,6 +304,7 @@ VideoDecoder::VideoDecoder(const std::string& path, int threads) : s_(std::make_
     if (threads < 0 || threads > kMaxThreads)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("threads", threads, 0, kMaxThreads));
     s_->ctx->thread_count = threads;
+    if (uncropped) s_->ctx->apply_cropping = 0;
     if ((err = avcodec_open2(s_->ctx, codec, nullptr)) < 0)
         throw Error(ErrorCode::kUnsupported, "cannot open decoder '" + std::string(codec->name) + "': " + av_error_report(err));
     s_->pkt = av_packet_alloc();
@@ -381,6 +382,10 @@ bool VideoDecoder::next(DecodedFrame& out, bool copy_picture) {
     out.seed = 0;
     out.matrix_coefficients = f->colorspace == AVCOL_SPC_UNSPECIFIED ? 2 : int(f->colorspace);
     out.index = s.frames++;
+    out.crop_left = int(f->crop_left);
+    out.crop_top = int(f->crop_top);
+    out.crop_right = int(f->crop_right);
+    out.crop_bottom = int(f->crop_bottom);
     out.pts = f->best_effort_timestamp != AV_NOPTS_VALUE ? std::optional<int64_t>(f->best_effort_timestamp)
                                                          : std::nullopt;
     // what was logged while it was decoded is about this picture (or about nothing lost)

@@ -22,7 +22,7 @@
 namespace filmgrain::libav {
 
 struct DecodedFrame {
-    FrameBuffer picture;  // cropped, packed planes
+    FrameBuffer picture;  // cropped (unless the decoder was opened uncropped), packed planes
     // The decoder's own picture (its planes, cropped), valid until the next call of next().
     // `picture` holds a copy of it unless next() was asked not to copy, in which case
     // `picture` only has the right size and format: a caller that adds grain writes it
@@ -37,6 +37,9 @@ struct DecodedFrame {
     uint64_t seed = 0;
     int matrix_coefficients = 2;  // H.273 MatrixCoefficients of the frame (2: unspecified)
     int64_t index = 0;            // 0-based, in the order the decoder outputs pictures
+    // The conformance window, when the decoder was opened uncropped: `picture` and `decoded`
+    // are the coded picture and these are the samples to crop from each side (luma).
+    int crop_left = 0, crop_top = 0, crop_right = 0, crop_bottom = 0;
     std::optional<int64_t> pts;   // best-effort presentation timestamp, in the stream's time base
 };
 
@@ -79,7 +82,9 @@ class VideoDecoder {
 public:
     // threads: the decoder's own threads (AVCodecContext::thread_count; 0 = libavcodec's
     // automatic choice, every core). Throws Error(kIo / kUnsupported).
-    explicit VideoDecoder(const std::string& path, int threads = 0);
+    // uncropped: output the coded picture and give the conformance window apart
+    // (AVCodecContext::apply_cropping = 0), for grain added before the crop as FFmpeg does.
+    explicit VideoDecoder(const std::string& path, int threads = 0, bool uncropped = false);
     ~VideoDecoder();
     VideoDecoder(const VideoDecoder&) = delete;
     VideoDecoder& operator=(const VideoDecoder&) = delete;

@@ -13,7 +13,6 @@
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
 #include "fgc/params_resolution.hpp"
-#include "fgc/plane_layout.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
@@ -24,7 +23,7 @@ namespace {
 
 void check_options(const SessionOptions& o) {
     const int flavour = static_cast<int>(o.flavour), persistence = static_cast<int>(o.persistence);
-    if (flavour < 0 || flavour > 3) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("flavour", flavour, 0, 3));
+    if (flavour < 0 || flavour > 4) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("flavour", flavour, 0, 4));
     if (persistence < 0 || persistence > 1)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("persistence", persistence, 0, 1));
     if (o.threads < 0 || o.threads > kMaxThreads)
@@ -70,10 +69,7 @@ void copy_frame(const FrameView& src, const FrameView& dst) {
 }
 
 void check_views(const FrameView& src, const FrameView& dst, int dst_bit_depth) {
-    // First: the strides' range (an |stride| the AV1 check would compute from PTRDIFF_MIN
-    // overflows) and 2-byte alignment of 16-bit samples, for every model.
-    fgc::check_plane_layout(src, "src");
-    fgc::check_plane_layout(dst, "dst");
+    // sizes, planes, strides and 16-bit alignment (check_plane_layout), for every model
     av1::check_frame_view(src, "src");
     av1::check_frame_view(dst, "dst");
     if (src.format != dst.format || src.width != dst.width || src.height != dst.height)

@@ -416,6 +416,6 @@ TEST(Av1Synthesis, StrideTooSmallIsRejected) {
         FAIL();
     } catch (const Error& e) {
         EXPECT_EQ(e.code(), ErrorCode::kInvalidArgument);
-        EXPECT_NE(std::string(e.what()).find("planes[0].stride = 39"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("strides[0] = 39"), std::string::npos) << e.what();
     }
 }

@@ -692,6 +692,29 @@ static void test_options_v2(void) {
             if (i == 2) CHECK(frames_equal(&a.frame, &b.frame)); /* 1.0 layout = defaults */
         }
     }
+    /* ffmpeg: the test set signals chroma with fewer than 3 model values, where FFmpeg infers
+     * no cut-off (departure (a)): its picture differs from rdd5's, the same on every run. */
+    fg_context *ff1 = NULL, *ff2 = NULL;
+    fg_options_init(&o);
+    o.flavour = FG_FLAVOUR_FFMPEG;
+    CHECK(fg_context_create(&o, &ff1, NULL, 0) == FG_OK);
+    o.threads = 3;
+    CHECK(fg_context_create(&o, &ff2, NULL, 0) == FG_OK);
+    if (ff1 && ff2 && rdd5) {
+        test_frame c1, c2;
+        frame_alloc(&c1, 200, 136, 8, FG_CHROMA_420, LAYOUT_PACKED);
+        frame_alloc(&c2, 200, 136, 8, FG_CHROMA_420, LAYOUT_PACKED);
+        CHECK_STATUS(ff1, push_fgc_test_params(ff1, NULL), FG_OK, NULL);
+        CHECK_STATUS(ff1, fg_context_apply(ff1, &src.frame, &c1.frame, NULL), FG_OK, NULL);
+        CHECK_STATUS(ff2, push_fgc_test_params(ff2, NULL), FG_OK, NULL);
+        CHECK_STATUS(ff2, fg_context_apply(ff2, &src.frame, &c2.frame, NULL), FG_OK, NULL);
+        CHECK(frames_equal(&c1.frame, &c2.frame));
+        CHECK(!frames_equal(&c1.frame, &b.frame));
+        frame_free(&c1);
+        frame_free(&c2);
+    }
+    fg_context_destroy(ff1);
+    fg_context_destroy(ff2);
     fg_context_destroy(tr);
     fg_context_destroy(rdd5);
     fg_context_destroy(old);
@@ -702,9 +725,9 @@ static void test_options_v2(void) {
     CHECK(fg_context_create(&o, &bad, message, sizeof message) == FG_ERROR_INVALID_ARGUMENT && bad == NULL);
     CHECK(strstr(message, "block_size = 12") != NULL);
     fg_options_init(&o);
-    o.flavour = 4;
+    o.flavour = 5;
     CHECK(fg_context_create(&o, &bad, message, sizeof message) == FG_ERROR_INVALID_ARGUMENT);
-    CHECK(strstr(message, "options.flavour = 4 is out of range (allowed 0..3)") != NULL);
+    CHECK(strstr(message, "options.flavour = 5 is out of range (allowed 0..4)") != NULL);
     frame_free(&src);
     frame_free(&a);
     frame_free(&b);

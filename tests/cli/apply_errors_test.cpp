@@ -93,7 +93,7 @@ TEST_F(ApplyCli, BadOptionsAreNamed) {
     write("p.json", kValid);
     std::string log;
     EXPECT_NE(run(base() + "--flavour dolby --params '" + (dir / "p.json").string() + "'", &log), 0);
-    EXPECT_NE(log.find("allowed rdd5, vtm, vfgs"), std::string::npos) << log;
+    EXPECT_NE(log.find("allowed rdd5, ffmpeg, vtm, vfgs"), std::string::npos) << log;
     log.clear();
     EXPECT_NE(run("-i '" + (dir / "in.yuv").string() + "' -o '" + (dir / "out.yuv").string() +
                       "' --size 176x144 --pix-fmt yuv411p --params '" + (dir / "p.json").string() + "'",

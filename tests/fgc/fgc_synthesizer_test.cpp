@@ -63,7 +63,7 @@ double plane_sd(const FrameBuffer& a, const FrameBuffer& b, int plane) {
 // within the range.
 TEST(FgcSynthesizer, SamplesAboveTheBitDepthStayInBounds) {
     for (int bd : {10, 12})
-        for (FgcFlavour flavour : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kTr})
+        for (FgcFlavour flavour : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kTr, FgcFlavour::kFfmpeg})
             for (bool reference : {true, false}) {
                 FrameBuffer src(288, 144, PixelFormat{ChromaFormat::k420, bd}), dst(288, 144, src.format());
                 auto* in = reinterpret_cast<uint16_t*>(src.bytes());

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <string>
 
-#include "fgc/plane_layout.hpp"
+#include "core/plane_layout.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_synthesis.hpp"
@@ -96,8 +96,8 @@ void check_frame(const FrameView& src, const FrameView& dst, int out_bd) {
     if (dst.bit_depth != out_bd)
         bad_arg("destination bit_depth = " + std::to_string(dst.bit_depth) + ", expected " + std::to_string(out_bd));
     try {
-        fgc::check_plane_layout(src, "src");
-        fgc::check_plane_layout(dst, "dst");
+        check_plane_layout(src, "src");
+        check_plane_layout(dst, "dst");
     } catch (const Error& e) {
         bad_arg(e.what());
     }
