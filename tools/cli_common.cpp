@@ -29,23 +29,10 @@ void RawVideoOptions::add_to(CLI::App* app) {
 }
 
 FgcFlavour parse_flavour(const std::string& s) {
-    if (s == "rdd5") return FgcFlavour::kRdd5;
-    if (s == "vtm" || s == "hm") return FgcFlavour::kVtm;
-    if (s == "vfgs") return FgcFlavour::kVfgs;
-    if (s == "tr") return FgcFlavour::kTr;
-    if (s == "ffmpeg") return FgcFlavour::kFfmpeg;
+    if (s == "hm") return FgcFlavour::kVtm;
+    for (FgcFlavour f : {FgcFlavour::kRdd5, FgcFlavour::kFfmpeg, FgcFlavour::kVtm, FgcFlavour::kVfgs, FgcFlavour::kTr})
+        if (s == fgc_flavour_name(f)) return f;
     throw Error(ErrorCode::kInvalidArgument, "--flavour '" + s + "' is not known (allowed rdd5, ffmpeg, vtm, vfgs, tr)");
-}
-
-std::string flavour_name(FgcFlavour f) {
-    switch (f) {
-        case FgcFlavour::kRdd5: return "rdd5";
-        case FgcFlavour::kVtm: return "vtm";
-        case FgcFlavour::kVfgs: return "vfgs";
-        case FgcFlavour::kTr: return "tr";
-        case FgcFlavour::kFfmpeg: return "ffmpeg";
-    }
-    return "?";
 }
 
 Av1ColorInfo av1_color_of(const PixelFormat& format, int matrix_coefficients) {

@@ -20,7 +20,6 @@ struct RawVideoOptions {
 };
 
 FgcFlavour parse_flavour(const std::string& s);
-std::string flavour_name(FgcFlavour f);
 // The AV1 picture facts (color_config()) of a pixel format, as the tool's AV1 parameter files
 // carry them.
 Av1ColorInfo av1_color_of(const PixelFormat& format, int matrix_coefficients = 2);

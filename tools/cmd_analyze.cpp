@@ -223,7 +223,7 @@ int run_analyze(const AnalyzeOptions& o) {
         rep.source = centre_crop(sample.source[0], crop);
         rep.denoised = centre_crop(sample.denoised[0], crop);
         rep.resynthesized = centre_crop(analysis::plane_to_float(resynth.view(), 0), crop);
-        rep.title = std::string("filmgrain analyze: ") + (fgc ? "FGC SEI (" + flavour_name(flavour) + ")" : "AV1 film grain");
+        rep.title = std::string("filmgrain analyze: ") + (fgc ? "FGC SEI (" + std::string(fgc_flavour_name(flavour)) + ")" : "AV1 film grain");
         rep.input_description = o.input + ": " + std::to_string(info.width) + "x" + std::to_string(info.height) + " " +
                                 pix_fmt_name(fmt) + ", " + std::to_string(k) + " frame(s), " +
                                 std::to_string(analyzer->frames_analysed()) + " analysed (every " +

@@ -235,7 +235,7 @@ int run_fgc(const ApplyOptions& o, FgcFlavour flavour, FgcCodec codec, std::uniq
         so.coded_height = cs.height;
     }
     Session session(so);
-    const std::string model = "flavour " + flavour_name(flavour);
+    const std::string model = std::string("flavour ") + fgc_flavour_name(flavour);
     return process_video(
         o, out_override, override_format,
         [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {

@@ -207,10 +207,7 @@ int run_decode(const DecodeOptions& o) {
             pic.bit_depth = src.bit_depth;
             if (frame.matrix_coefficients != 2) pic.matrix_coefficients = frame.matrix_coefficients;
             if (const auto sel = select_afgs1_set(*afgs1[std::size_t(frame.index)], pic); sel && sel->params.apply_grain) {
-                Av1FilmGrainParams p = sel->params;
-                p.update_grain = 1;
-                p.chroma_point_counts_signalled = true;  // AFGS1 signals the chroma point counts
-                frame.av1 = p;
+                frame.av1 = sel->params;
                 frame.matrix_coefficients = sel->matrix_coefficients;
             }
         }

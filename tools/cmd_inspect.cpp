@@ -40,19 +40,25 @@ int run_inspect(const InspectOptions& o) {
     return 0;
 }
 
-// AV1: the frames' parameters from the stream's AFGS1 metadata or frame headers, in the AV1
-// per-frame form.
-int run_extract_av1(const InspectOptions& o, const bitstream::StreamScan& s, std::vector<std::string>& warnings) {
-    const std::vector<Av1FrameParams> frames = bitstream::av1_params_from_scan(s, warnings);
+// Writes per-picture AV1 parameters in the per-frame form after the warnings, and the summary
+// "N <units>, M with <grain>, written to ...".
+int write_av1_frames(const InspectOptions& o, const std::vector<Av1FrameParams>& frames,
+                     const std::vector<std::string>& warnings, const char* units, const char* grain) {
     if (!o.quiet)
         for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
     write_file_atomically(o.output, av1_frame_params_to_json(frames).dump(1) + "\n");
     int with_grain = 0;
     for (const auto& f : frames) with_grain += f.grain.apply_grain != 0;
     if (!o.quiet && o.output != "-")
-        std::fprintf(stderr, "filmgrain: %zu frame(s), %d with film grain, written to %s\n", frames.size(), with_grain,
+        std::fprintf(stderr, "filmgrain: %zu %s, %d with %s, written to %s\n", frames.size(), units, with_grain, grain,
                      o.output.c_str());
     return 0;
+}
+
+// AV1: the frames' parameters from the stream's AFGS1 metadata or frame headers, in the AV1
+// per-frame form.
+int run_extract_av1(const InspectOptions& o, const bitstream::StreamScan& s, std::vector<std::string>& warnings) {
+    return write_av1_frames(o, bitstream::av1_params_from_scan(s, warnings), warnings, "frame(s)", "film grain");
 }
 
 // H.26x with AFGS1 (T.35 SEI): each output picture's selected set, in the AV1 per-frame form.
@@ -79,21 +85,11 @@ int run_extract_afgs1(const InspectOptions& o, const std::vector<std::optional<A
         if (payload)
             if (const auto sel = select_afgs1_set(*payload, pic)) {
                 f.grain = sel->params;
-                f.grain.update_grain = 1;
-                f.grain.chroma_point_counts_signalled = true;
                 f.color = av1_color_of(fmt, sel->matrix_coefficients);
             }
         frames.push_back(f);
     }
-    if (!o.quiet)
-        for (const auto& w : warnings) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
-    write_file_atomically(o.output, av1_frame_params_to_json(frames).dump(1) + "\n");
-    int with_grain = 0;
-    for (const auto& f : frames) with_grain += f.grain.apply_grain != 0;
-    if (!o.quiet && o.output != "-")
-        std::fprintf(stderr, "filmgrain: %zu picture(s), %d with AFGS1 film grain, written to %s\n", frames.size(),
-                     with_grain, o.output.c_str());
-    return 0;
+    return write_av1_frames(o, frames, warnings, "picture(s)", "AFGS1 film grain");
 }
 
 int run_extract(const InspectOptions& o) {

@@ -201,8 +201,7 @@ std::vector<Av1FrameParams> frames_from_afgs1(const PayloadFiles& files, const C
             notes.add("all but one parameter set of multi-set payloads (the one " +
                       std::string(o.size.empty() ? "signalled first" : "selected for --size") + " is kept)");
         const Afgs1ParamSet& s = pl.sets[chosen];
-        f.grain = s.params;
-        f.grain.update_grain = 1;
+        f.grain = afgs1_set_as_frame_params(s);
         f.color = color_of(s.target);
         if (s.target.apply_horz_resolution || s.target.apply_vert_resolution)
             notes.add("apply_horz_resolution / apply_vert_resolution (the target picture size)");

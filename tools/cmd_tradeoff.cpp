@@ -231,7 +231,7 @@ void register_tradeoff(CLI::App& app) {
         for (FgcFlavour f : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kVfgs}) {
             const FgcParams p = calibrate_fgc(best_cut, f, target(0, 0), probe);
             const auto& iv = p.comp[0].intervals[0];
-            Row row = run_frames("FGC SEI, " + flavour_name(f),
+            Row row = run_frames(std::string("FGC SEI, ") + fgc_flavour_name(f),
                                  "cut-off " + std::to_string(best_cut) + ", scale " + std::to_string(iv.comp_model_value[0]) +
                                      ", log2_scale_factor " + std::to_string(p.log2_scale_factor),
                                  fgc_synthesizer(p, f), content, o->frames, target);

@@ -30,6 +30,9 @@ enum class FgcCodec : int { kAvc = 0, kHevc = 1, kVvc = 2 };
 //         Parameter sets the rdd5 flavour accepts give the rdd5 output bit for bit.
 enum class FgcFlavour : int { kRdd5 = 0, kVtm = 1, kVfgs = 2, kTr = 3, kFfmpeg = 4 };
 
+// "rdd5", "vtm", "vfgs", "tr", "ffmpeg" (the names --flavour takes); "?" for other values.
+const char* fgc_flavour_name(FgcFlavour flavour);
+
 // How an FGC SEI's persistence is honoured for pictures that carry no SEI.
 //  kReference: as HM does it: a picture without an SEI reuses the last SEI whatever its
 //              persistence flag / repetition period (invalid or cancelled -> no grain).

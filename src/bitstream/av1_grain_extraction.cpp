@@ -113,8 +113,6 @@ std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::ve
                                            "unknown, no set is selected");
             } else if (const auto sel = select_afgs1_set(*payload, picture_of(*sequence))) {
                 f.grain = sel->params;
-                f.grain.update_grain = 1;
-                f.grain.film_grain_params_ref_idx = 0;
                 f.color = color_of(*sequence, sel->matrix_coefficients);
             } else if (payload->afgs1_enable_flag) {
                 warnings.push_back(where + "no set of the AFGS1 payload fits the " +
@@ -139,10 +137,8 @@ std::vector<std::optional<Afgs1Payload>> afgs1_payloads_in_output_order(const St
         for (const FoundT35& t : au.t35) {
             if (!is_afgs1_t35(t.t35)) continue;
             any = true;
-            std::vector<uint8_t> payload{uint8_t(t.t35.country_code)};
-            payload.insert(payload.end(), t.t35.bytes.begin(), t.t35.bytes.end());
             try {
-                by_unit[&au] = reader.receive(payload, true);
+                by_unit[&au] = reader.receive(t35_bytes(t.t35), true);
             } catch (const Error& e) {
                 warnings.push_back("access unit " + std::to_string(au.index) + ": AFGS1 payload skipped: " + e.what());
             }

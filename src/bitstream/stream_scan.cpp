@@ -23,9 +23,6 @@ constexpr int kH266PictureHeaderNut = 19;  // H.266 Table 5
 NalCodec nal_codec(StreamCodec c) {
     return c == StreamCodec::kH264 ? NalCodec::kH264 : c == StreamCodec::kH265 ? NalCodec::kH265 : NalCodec::kH266;
 }
-FgcCodec fgc_codec(StreamCodec c) {
-    return c == StreamCodec::kH264 ? FgcCodec::kAvc : c == StreamCodec::kH265 ? FgcCodec::kHevc : FgcCodec::kVvc;
-}
 
 void collect_sei(const std::vector<uint8_t>& rbsp, int header_bytes, bool suffix, StreamCodec codec, AccessUnit& au) {
     const std::vector<uint8_t> body(rbsp.begin() + header_bytes, rbsp.end());
@@ -241,6 +238,10 @@ std::string lower_extension(const std::string& path) {
 }
 
 }  // namespace
+
+FgcCodec fgc_codec(StreamCodec c) {
+    return c == StreamCodec::kH264 ? FgcCodec::kAvc : c == StreamCodec::kH265 ? FgcCodec::kHevc : FgcCodec::kVvc;
+}
 
 const char* stream_codec_name(StreamCodec c) {
     switch (c) {

@@ -19,6 +19,8 @@ namespace filmgrain::bitstream {
 enum class StreamCodec { kH264, kH265, kH266, kAv1 };
 const char* stream_codec_name(StreamCodec c);  // "h264", "h265", "h266", "av1"
 StreamCodec parse_stream_codec(const std::string& name);  // also avc/hevc/vvc; throws Error
+// The FGC SEI syntax variant of a NAL-unit codec (H.264: repetition period; else persistence).
+FgcCodec fgc_codec(StreamCodec c);
 
 // From the first bytes (IVF/OBU layouts, NAL header patterns), then the file name's
 // extension; nullopt when neither tells.

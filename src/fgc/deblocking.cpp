@@ -2,23 +2,12 @@
 
 namespace filmgrain::fgc {
 
-void deblock_stripe_vertical_edges(int32_t* grain, int stride, int rows, int width, int block_size) {
-    for (int y = 0; y < rows; y++) {
-        int32_t* row = grain + std::ptrdiff_t(y) * stride;
-        for (int e = block_size; e < width; e += block_size) {
-            const int32_t l1 = row[e - 2], l0 = row[e - 1], r0 = row[e], r1 = row[e + 1];
-            row[e] = (l0 + (r0 << 1) + r1) >> 2;
-            row[e - 1] = (l1 + (l0 << 1) + r0) >> 2;
-        }
-    }
-}
-
-void deblock_stripe_edges_before_grain(int32_t* grain, int stride, int rows, int width, int block_size,
-                                       const uint8_t* right_has_grain) {
+void deblock_stripe_vertical_edges(int32_t* grain, int stride, int rows, int width, int block_size,
+                                   const uint8_t* right_has_grain) {
     for (int y = 0; y < rows; y++) {
         int32_t* row = grain + std::ptrdiff_t(y) * stride;
         for (int e = block_size, k = 1; e < width; e += block_size, k++) {
-            if (!right_has_grain[k]) continue;
+            if (right_has_grain && !right_has_grain[k]) continue;
             const int32_t l1 = row[e - 2], l0 = row[e - 1], r0 = row[e], r1 = row[e + 1];
             row[e] = (l0 + (r0 << 1) + r1) >> 2;
             row[e - 1] = (l1 + (l0 << 1) + r0) >> 2;

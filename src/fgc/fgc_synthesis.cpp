@@ -92,9 +92,7 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
     const bool ffmpeg = flavour_ == FgcFlavour::kFfmpeg;
     const int block_columns = blocks_x * (rb / bs);
     std::vector<uint8_t>& has_grain = scratch.has_grain;
-    if (ffmpeg) {
-        std::fill(has_grain.begin(), has_grain.begin() + std::ptrdiff_t(block_columns) * 2, uint8_t(0));
-    }
+    if (ffmpeg) std::fill(has_grain.begin(), has_grain.begin() + std::ptrdiff_t(block_columns) * 2, uint8_t(0));
     for (int bx = 0; bx < blocks_x; bx++) {
         const BlockOffset off = block_offset_from_state(states[std::size_t(by) * blocks_x + bx], bs);
         const int sub_count = bs == 8 ? 4 : 1;
@@ -125,13 +123,9 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
         }
     }
     const int rows = std::min(rb, h - by * rb);
-    if (ffmpeg) {
-        for (int yo = 0; yo < rows; yo += bs)
-            deblock_stripe_edges_before_grain(stripe.data() + std::size_t(yo) * stride, stride, std::min(bs, rows - yo),
-                                              w, bs, has_grain.data() + std::size_t(yo / bs) * block_columns);
-    } else {
-        deblock_stripe_vertical_edges(stripe.data(), stride, rows, w, bs);
-    }
+    for (int yo = 0; yo < rows; yo += bs)
+        deblock_stripe_vertical_edges(stripe.data() + std::size_t(yo) * stride, stride, std::min(bs, rows - yo), w, bs,
+                                      ffmpeg ? has_grain.data() + std::size_t(yo / bs) * block_columns : nullptr);
     for (int l = 0; l < rows; l++) {
         const int y = by * rb + l;
         blend_row_additive<Pixel>(src.row<const Pixel>(y), dst.row<Pixel>(y), stripe.data() + std::size_t(l) * stride,

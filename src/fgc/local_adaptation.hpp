@@ -8,19 +8,27 @@
 
 namespace filmgrain::fgc {
 
-// RDD 5 (HM-2020): mean over the samples of the block that lie inside the plane (partial
-// blocks at the right and bottom edges average fewer samples), then >> (bd - 8). FFmpeg does
-// not (block_average_zero_outside).
+// The sum of the samples of a size x size block that lie inside the plane, and their count.
 template <typename Pixel>
-int block_average_inside(const PlaneView& plane, int x0, int y0, int size, int bit_depth) {
+uint32_t block_sum_inside(const PlaneView& plane, int x0, int y0, int size, uint32_t* count) {
     const int w = std::min(size, plane.width - x0), h = std::min(size, plane.height - y0);
     uint32_t sum = 0;
     for (int y = 0; y < h; y++) {
         const Pixel* row = plane.row<const Pixel>(y0 + y) + x0;
         for (int x = 0; x < w; x++) sum += row[x];
     }
-    uint32_t avg = (sum / uint32_t(w * h)) >> (bit_depth - 8);
-    return int(std::min<uint32_t>(avg, 255));
+    *count = uint32_t(w * h);
+    return sum;
+}
+
+// RDD 5 (HM-2020): mean over the samples of the block that lie inside the plane (partial
+// blocks at the right and bottom edges average fewer samples), then >> (bd - 8). FFmpeg does
+// not (block_average_zero_outside).
+template <typename Pixel>
+int block_average_inside(const PlaneView& plane, int x0, int y0, int size, int bit_depth) {
+    uint32_t count = 0;
+    const uint32_t sum = block_sum_inside<Pixel>(plane, x0, y0, size, &count);
+    return int(std::min<uint32_t>((sum / count) >> (bit_depth - 8), 255));
 }
 
 // FFmpeg's h274.c (ffmpeg flavour) sums a whole 8x8 block of the picture it is given, the
@@ -32,13 +40,9 @@ int block_average_inside(const PlaneView& plane, int x0, int y0, int size, int b
 template <typename Pixel>
 int block_average_zero_outside(const PlaneView& plane, int x0, int y0, int size, int bit_depth) {
     const int log2_area = size == 8 ? 6 : size == 16 ? 8 : 10;
-    const int w = std::min(size, plane.width - x0), h = std::min(size, plane.height - y0);
-    uint64_t sum = 0;
-    for (int y = 0; y < h; y++) {
-        const Pixel* row = plane.row<const Pixel>(y0 + y) + x0;
-        for (int x = 0; x < w; x++) sum += row[x];
-    }
-    return int(std::min<uint64_t>(sum >> (log2_area + bit_depth - 8), 255));
+    uint32_t count = 0;
+    const uint32_t sum = block_sum_inside<Pixel>(plane, x0, y0, size, &count);
+    return int(std::min<uint32_t>(sum >> (log2_area + bit_depth - 8), 255));
 }
 
 // VTM/HM master: sum over a whole block of the picture padded by edge replication (HM

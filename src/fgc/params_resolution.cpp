@@ -92,6 +92,25 @@ void check_fgc_syntax_ranges(const FgcParams& p, int picture_bit_depth) {
                                      p.film_grain_characteristics_repetition_period, 0, 16384));
 }
 
+}  // namespace filmgrain::fgc
+
+namespace filmgrain {
+
+const char* fgc_flavour_name(FgcFlavour flavour) {
+    switch (flavour) {
+        case FgcFlavour::kRdd5: return "rdd5";
+        case FgcFlavour::kVtm: return "vtm";
+        case FgcFlavour::kVfgs: return "vfgs";
+        case FgcFlavour::kTr: return "tr";
+        case FgcFlavour::kFfmpeg: return "ffmpeg";
+    }
+    return "?";
+}
+
+}  // namespace filmgrain
+
+namespace filmgrain::fgc {
+
 ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const PictureFormat& fmt) {
     ResolvedFgc r;
     if (fmt.bit_depth < 8 || fmt.bit_depth > 16)
@@ -121,7 +140,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                             " is not supported by the ffmpeg flavour (allowed 0..0: FFmpeg outputs the picture "
                             "without grain)");
     } else if (!tr) {
-        const std::string name = flavour == FgcFlavour::kVtm ? "vtm" : "rdd5";
+        const std::string name = fgc_flavour_name(flavour);
         if (p.film_grain_model_id != 0)
             throw Error(ErrorCode::kUnsupported,
                         "film_grain_model_id = " + std::to_string(p.film_grain_model_id) + " is not supported by the " +
@@ -190,23 +209,21 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
             const std::string idx = "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
-            if (ffmpeg) {
-                // FFmpeg takes the first signalled interval that holds the block average: an
-                // empty interval (lower > upper) holds none, overlaps go to the earlier one.
-                for (int v = iv.intensity_interval_lower_bound; v <= iv.intensity_interval_upper_bound; v++)
-                    if (rc.interval_of_intensity[v] < 0) rc.interval_of_intensity[v] = int16_t(i);
-            } else if (iv.intensity_interval_lower_bound > iv.intensity_interval_upper_bound) {
+            // ffmpeg: FFmpeg takes the first signalled interval that holds the block average,
+            // so an empty interval (lower > upper) holds none and an overlap goes to the earlier.
+            if (iv.intensity_interval_lower_bound > iv.intensity_interval_upper_bound && !ffmpeg)
                 invalid("intensity_interval_lower_bound" + idx + " = " + std::to_string(iv.intensity_interval_lower_bound) +
                         " exceeds intensity_interval_upper_bound" + idx + " = " +
                         std::to_string(iv.intensity_interval_upper_bound) + " (allowed lower <= upper)");
-            }
-            for (int v = iv.intensity_interval_lower_bound; !ffmpeg && v <= iv.intensity_interval_upper_bound; v++) {
-                if (rc.interval_of_intensity[v] >= 0)
+            for (int v = iv.intensity_interval_lower_bound; v <= iv.intensity_interval_upper_bound; v++) {
+                if (rc.interval_of_intensity[v] >= 0) {
+                    if (ffmpeg) continue;
                     invalid("intensity interval " + std::to_string(i) + " of component " + std::to_string(c) + " [" +
                             std::to_string(iv.intensity_interval_lower_bound) + ", " +
                             std::to_string(iv.intensity_interval_upper_bound) + "] overlaps interval " +
                             std::to_string(rc.interval_of_intensity[v]) + " at intensity " + std::to_string(v) +
                             " (allowed: intervals that do not overlap)");
+                }
                 rc.interval_of_intensity[v] = int16_t(i);
             }
             ResolvedInterval ri;
@@ -232,49 +249,33 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                 rc.intervals.push_back(ri);
                 continue;
             }
-            if (ffmpeg) {
-                // FFmpeg infers no default: cut-offs that are not signalled stay 0. It
-                // converts 4:2:0 chroma like RDD 5 and then clips the cut-offs to 2..14
-                // where RDD 5 refuses values outside it.
-                int h = nmv >= 2 ? iv.comp_model_value[1] : 0, v = nmv >= 3 ? iv.comp_model_value[2] : 0;
-                if (c > 0 && fmt.chroma == ChromaFormat::k420) {
-                    ri.scale >>= 1;
-                    h <<= 1;
-                    v <<= 1;
-                } else if (c > 0 && fmt.chroma == ChromaFormat::k422) {
-                    ri.scale = (ri.scale * 181) >> 8;
-                    h <<= 1;
-                }
-                ri.cutoff_h = std::clamp(h, 2, 14);
-                ri.cutoff_v = std::clamp(v, 2, 14);
-                auto pair = std::make_pair(ri.cutoff_h, ri.cutoff_v);
-                if (std::find(r.cutoff_pairs.begin(), r.cutoff_pairs.end(), pair) == r.cutoff_pairs.end())
-                    r.cutoff_pairs.push_back(pair);
-                rc.intervals.push_back(ri);
-                continue;
-            }
-            // TR 23002-9 7.3.1 defaults: horizontal cut-off 8, vertical = horizontal.
-            ri.cutoff_h = nmv >= 2 ? iv.comp_model_value[1] : 8;
-            ri.cutoff_v = nmv >= 3 ? iv.comp_model_value[2] : ri.cutoff_h;
-            if (ri.cutoff_h < 2 || ri.cutoff_h > 14)
-                invalid(out_of_range_message(nmv >= 2 ? cmv(c, int(i), 1) : "default horizontal cut-off", ri.cutoff_h, 2, 14));
-            if (ri.cutoff_v < 2 || ri.cutoff_v > 14)
+            // TR 23002-9 7.3.1 defaults: horizontal cut-off 8, vertical = horizontal. FFmpeg
+            // (ffmpeg) infers none: what is not signalled stays 0, and it clips where RDD 5
+            // refuses values outside 2..14 (the clip below).
+            int h = nmv >= 2 ? iv.comp_model_value[1] : ffmpeg ? 0 : 8;
+            int v = nmv >= 3 ? iv.comp_model_value[2] : ffmpeg ? 0 : h;
+            if (!ffmpeg && (h < 2 || h > 14))
+                invalid(out_of_range_message(nmv >= 2 ? cmv(c, int(i), 1) : "default horizontal cut-off", h, 2, 14));
+            if (!ffmpeg && (v < 2 || v > 14))
                 invalid(out_of_range_message(nmv >= 3 ? cmv(c, int(i), 2) : "inferred vertical cut-off (= comp_model_value[" +
                                                                                  std::to_string(c) + "][" + std::to_string(i) + "][1])",
-                                             ri.cutoff_v, 2, 14));
+                                             v, 2, 14));
             // The references' chroma conversion: the model describes grain at luma resolution.
             if (c > 0 && fmt.chroma == ChromaFormat::k420) {
                 ri.scale >>= 1;
-                ri.cutoff_h = std::clamp(ri.cutoff_h << 1, 2, 14);
-                ri.cutoff_v = std::clamp(ri.cutoff_v << 1, 2, 14);
+                h <<= 1;
+                v <<= 1;
             } else if (c > 0 && fmt.chroma == ChromaFormat::k422) {
                 ri.scale = (ri.scale * 181) >> 8;  // 1/sqrt(2) in Q8
-                ri.cutoff_h = std::clamp(ri.cutoff_h << 1, 2, 14);
+                h <<= 1;
             }
+            ri.cutoff_h = std::clamp(h, 2, 14);
+            ri.cutoff_v = std::clamp(v, 2, 14);
             auto pair = std::make_pair(ri.cutoff_h, ri.cutoff_v);
             if (std::find(r.cutoff_pairs.begin(), r.cutoff_pairs.end(), pair) == r.cutoff_pairs.end()) {
                 r.cutoff_pairs.push_back(pair);
-                if (int(r.cutoff_pairs.size()) > kMaxCutoffPairs)
+                // ffmpeg: FFmpeg builds any of the 13 x 13 templates a set asks for
+                if (!ffmpeg && int(r.cutoff_pairs.size()) > kMaxCutoffPairs)
                     invalid("the parameter set uses " + std::to_string(r.cutoff_pairs.size()) +
                             " distinct (horizontal, vertical) cut-off pairs after chroma conversion, first excess at " +
                             cmv(c, int(i), 1) + " (allowed at most 10)");

@@ -130,9 +130,16 @@ struct Afgs1Picture {
 
 struct Afgs1Selection {
     std::size_t set_index = 0;    // into Afgs1Payload::sets
-    Av1FilmGrainParams params;    // apply_grain = 0 when the chosen set disables grain
+    // The chosen set as the picture's own parameters (afgs1_set_as_frame_params); apply_grain
+    // = 0 when the set disables grain.
+    Av1FilmGrainParams params;
     int matrix_coefficients = 2;  // the set's when signalled, else the picture's (2 if unknown)
 };
+
+// A set's parameters as a picture's own AV1 film grain parameters (update_grain 1; chroma
+// point counts marked signalled where AV1 would infer them 0): what every consumer of a
+// selected or converted set applies.
+Av1FilmGrainParams afgs1_set_as_frame_params(const Afgs1ParamSet& set);
 
 // select_film_grain_param_set(): among the sets of this payload whose
 // subsampling (luma_only sets fit any picture: they carry no chroma grain), bit

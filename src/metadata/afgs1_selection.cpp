@@ -33,6 +33,18 @@ bool exact_size(const Afgs1SetTarget& t, const Afgs1Picture& pic) {
 
 }  // namespace
 
+Av1FilmGrainParams afgs1_set_as_frame_params(const Afgs1ParamSet& set) {
+    // Complete already: a stored set reused with update_grain_flag 0 was resolved when the
+    // payload was read. AFGS1 signals the chroma point counts even for 4:2:0 without luma
+    // points, where AV1's own syntax infers them 0: marked where that is the case, so a set
+    // AV1's syntax can carry stays equal to its AV1 form.
+    Av1FilmGrainParams p = set.params;
+    p.update_grain = 1;
+    p.film_grain_params_ref_idx = 0;
+    p.chroma_point_counts_signalled = p.num_y_points == 0 && (p.num_cb_points > 0 || p.num_cr_points > 0);
+    return p;
+}
+
 std::optional<Afgs1Selection> select_afgs1_set(const Afgs1Payload& payload, const Afgs1Picture& pic) {
     if (!payload.afgs1_enable_flag) return std::nullopt;
     std::optional<std::size_t> exact, largest;
@@ -56,7 +68,7 @@ std::optional<Afgs1Selection> select_afgs1_set(const Afgs1Payload& payload, cons
     const Afgs1ParamSet& s = payload.sets[*chosen];
     Afgs1Selection sel;
     sel.set_index = *chosen;
-    sel.params = s.params;
+    sel.params = afgs1_set_as_frame_params(s);
     sel.matrix_coefficients = s.target.cicp_info_present_flag ? s.target.matrix_coefficients
                               : pic.matrix_coefficients >= 0 ? pic.matrix_coefficients
                                                              : 2;

@@ -253,10 +253,7 @@ struct Session::Impl {
         // the selection already weighed the picture's matrix_coefficients against the set's
         FrameInfo selected = info;
         selected.matrix_coefficients.reset();
-        Av1FilmGrainParams params = sel->params;
-        // av1_film_grain_params() signals num_cb/cr_points even for 4:2:0 without luma points
-        params.chroma_point_counts_signalled = true;
-        ApplyResult applied = apply_av1_params(params, sel->matrix_coefficients, src, dst, selected);
+        ApplyResult applied = apply_av1_params(sel->params, sel->matrix_coefficients, src, dst, selected);
         if (!sel->params.apply_grain && applied.message.empty())
             applied.message = "film grain not applied: the selected AFGS1 set (film_grain_param_set_idx " +
                               std::to_string(payload.sets[sel->set_index].film_grain_param_set_idx) +

@@ -1,4 +1,5 @@
 // tools/option_parsing: the tool's option values are parsed whole and range-checked.
+#include "error_message.hpp"
 #include "option_parsing.hpp"
 
 #include <gtest/gtest.h>
@@ -10,14 +11,7 @@ using filmgrain::Error;
 
 namespace {
 
-std::string error_of(auto&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using filmgrain::test_support::error_of;
 
 }  // namespace
 

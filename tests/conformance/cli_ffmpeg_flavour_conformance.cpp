@@ -7,15 +7,15 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "conformance_case.hpp"
+#include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
 #include "io/xz_file.hpp"
-
-#include <cctype>
-#include <set>
 
 using namespace filmgrain;
 using namespace filmgrain::test_support;
@@ -27,9 +27,7 @@ struct FfmpegCase {
     std::string name, dir;
     nlohmann::json json;
     int width = 0, height = 0, frames = 0;
-    std::size_t frame_bytes() const {
-        return std::size_t(width) * height + 2 * std::size_t((width + 1) / 2) * std::size_t((height + 1) / 2);
-    }
+    std::size_t frame_bytes() const { return FrameBuffer::frame_bytes(width, height, PixelFormat{ChromaFormat::k420, 8}); }
 };
 
 FfmpegCase load(const std::string& name) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <random>
 
+#include "error_message.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/error.hpp"
 #include "metadata/fgc_json.hpp"
@@ -13,6 +14,8 @@ using namespace filmgrain;
 using namespace filmgrain::fgc;
 
 namespace {
+
+using filmgrain::test_support::error_of;
 FgcParams simple(int nmv = 3) {
     FgcParams p;
     p.log2_scale_factor = 4;
@@ -22,15 +25,6 @@ FgcParams simple(int nmv = 3) {
         p.comp[c].intervals = {{0, 100, {60, 4, 6}}, {101, 255, {90, 7, 5}}};
     }
     return p;
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 FgcParams random_params(std::mt19937& rng, FgcCodec codec) {

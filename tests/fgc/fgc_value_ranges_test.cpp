@@ -82,17 +82,9 @@ void apply(FgcFlavour flavour, const FgcParams& p, int bit_depth, ChromaFormat f
     s.apply(in.view(), out.view(), {0, 0});
 }
 
-std::string flavour_name(FgcFlavour f) {
-    switch (f) {
-    case FgcFlavour::kRdd5: return "rdd5";
-    case FgcFlavour::kVtm: return "vtm";
-    case FgcFlavour::kVfgs: return "vfgs";
-    case FgcFlavour::kTr: return "tr";
-    }
-    return "?";
-}
 
-constexpr FgcFlavour kAll[] = {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kVfgs, FgcFlavour::kTr};
+constexpr FgcFlavour kAll[] = {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kVfgs, FgcFlavour::kTr,
+                               FgcFlavour::kFfmpeg};
 
 }  // namespace
 
@@ -114,8 +106,8 @@ TEST(FgcValueRanges, NegativeScaleFactorIsRefusedByEveryFlavourOnEveryPath) {
                                                  std::to_string(value) + " is out of range (allowed 0.." + hi + ")";
                         // Typed FgcParams (C++, and what the JSON reader produces)
                         Error e = error_of([&] { apply(fl, p, bd, cf); });
-                        EXPECT_EQ(e.code(), ErrorCode::kInvalidParams) << flavour_name(fl) << ": " << e.what();
-                        EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << flavour_name(fl) << ": " << e.what();
+                        EXPECT_EQ(e.code(), ErrorCode::kInvalidParams) << fgc_flavour_name(fl) << ": " << e.what();
+                        EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << fgc_flavour_name(fl) << ": " << e.what();
                         // SEI payload bytes: se(v) carries the value, synthesis refuses it;
                         // INT32_MIN is the one int se(v) cannot code (code number 2^32): the
                         // writer refuses it rather than write 0
@@ -130,8 +122,8 @@ TEST(FgcValueRanges, NegativeScaleFactorIsRefusedByEveryFlavourOnEveryPath) {
                         const FgcParams from_sei =
                             parse_fgc_sei_payload(write_fgc_sei_payload(p, FgcCodec::kHevc), FgcCodec::kHevc);
                         e = error_of([&] { apply(fl, from_sei, bd, cf); });
-                        EXPECT_EQ(e.code(), ErrorCode::kInvalidParams) << flavour_name(fl) << ": " << e.what();
-                        EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << flavour_name(fl) << ": " << e.what();
+                        EXPECT_EQ(e.code(), ErrorCode::kInvalidParams) << fgc_flavour_name(fl) << ": " << e.what();
+                        EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << fgc_flavour_name(fl) << ": " << e.what();
                     }
 }
 
@@ -162,11 +154,11 @@ TEST(FgcValueRanges, AutoRegressiveValuesKeepTheSeiRange) {
                 // vfgs refuses what no picture allows at set_params, the rest when it meets the picture
                 const bool widest = fl == FgcFlavour::kVfgs && (value == INT_MAX || value == INT_MIN);
                 const std::string range = widest ? "-32768..32767" : "-128..127";
-                EXPECT_EQ(e.code(), ErrorCode::kInvalidParams) << flavour_name(fl) << " j=" << j << ": " << e.what();
+                EXPECT_EQ(e.code(), ErrorCode::kInvalidParams) << fgc_flavour_name(fl) << " j=" << j << ": " << e.what();
                 EXPECT_NE(std::string(e.what()).find("comp_model_value[0][0][" + std::to_string(j) + "] = " +
                                                      std::to_string(value) + " is out of range (allowed " + range + ")"),
                           std::string::npos)
-                    << flavour_name(fl) << ": " << e.what();
+                    << fgc_flavour_name(fl) << ": " << e.what();
             }
     // at 10 bits the range is -512..511: 128 passes the syntax check (vfgs takes it)
     std::array<int, 6> v{100, 1, 0, 1, 128, 1};
@@ -233,7 +225,7 @@ TEST(FgcValueRanges, LargestScaleTheReferencesTakeStillWorks) {
             FgcParams p = ff_params(255 << (bd - 8));
             for (auto& c : p.comp) c.intervals[0].comp_model_value[0] = 255 << (bd - 8);
             EXPECT_NO_THROW(apply(fl, p, bd, fl == FgcFlavour::kVfgs ? ChromaFormat::k420 : ChromaFormat::k422))
-                << flavour_name(fl) << " " << bd;
+                << fgc_flavour_name(fl) << " " << bd;
         }
 }
 
@@ -243,7 +235,7 @@ TEST(FgcSeed, AnyInt32PictureIdsWrapAsTheReferenceSeedDoes) {
     EXPECT_EQ(fgc::component_seed(INT32_MAX, 2), fgc::component_seed(255, 2));
     EXPECT_EQ(fgc::component_seed(INT32_MIN, 1), fgc::component_seed(0, 1));
     EXPECT_EQ(fgc::component_seed(-1, 0), fgc::component_seed(255, 0));
-    for (FgcFlavour fl : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kTr}) {
+    for (FgcFlavour fl : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kTr, FgcFlavour::kFfmpeg}) {
         FgcOptions o;
         o.flavour = fl;
         auto run = [&](int poc, int idr) {
@@ -253,13 +245,13 @@ TEST(FgcSeed, AnyInt32PictureIdsWrapAsTheReferenceSeedDoes) {
             s.apply(in.view(), out.view(), {poc, idr});
             return std::vector<uint8_t>(out.bytes(), out.bytes() + out.byte_size());
         };
-        EXPECT_EQ(run(INT32_MAX, 0), run(255, 0)) << flavour_name(fl);
-        EXPECT_EQ(run(INT32_MIN, 0), run(0, 0)) << flavour_name(fl);
-        EXPECT_NE(run(INT32_MAX, 0), run(0, 0)) << flavour_name(fl);
+        EXPECT_EQ(run(INT32_MAX, 0), run(255, 0)) << fgc_flavour_name(fl);
+        EXPECT_EQ(run(INT32_MIN, 0), run(0, 0)) << fgc_flavour_name(fl);
+        EXPECT_NE(run(INT32_MAX, 0), run(0, 0)) << fgc_flavour_name(fl);
         // idr_pic_id << 5 wraps too (rdd5, tr; vtm ignores it): 0x7FFFFFFF << 5 = 0xFFFFFFE0
         if (fl != FgcFlavour::kVtm) {
-            EXPECT_EQ(run(INT32_MAX, INT32_MAX), run(255 + 0xE0, 0)) << flavour_name(fl);
-            EXPECT_EQ(run(0, INT32_MIN), run(0, 0)) << flavour_name(fl);
+            EXPECT_EQ(run(INT32_MAX, INT32_MAX), run(255 + 0xE0, 0)) << fgc_flavour_name(fl);
+            EXPECT_EQ(run(0, INT32_MIN), run(0, 0)) << fgc_flavour_name(fl);
         } else {
             EXPECT_EQ(run(INT32_MAX, INT32_MAX), run(255, 0));
         }

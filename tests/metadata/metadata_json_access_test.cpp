@@ -1,5 +1,6 @@
 // metadata/json_access: the bounded JSON document parser and the checked integer reads
 // every JSON form goes through.
+#include "error_message.hpp"
 #include "metadata/json_access.hpp"
 
 #include <gtest/gtest.h>
@@ -13,14 +14,7 @@ using nlohmann::json;
 
 namespace {
 
-std::string error_of(auto&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using filmgrain::test_support::error_of;
 
 json parse(const std::string& s) {
     return parse_json_document(reinterpret_cast<const uint8_t*>(s.data()), s.size(), "doc");
