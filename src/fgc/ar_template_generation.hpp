@@ -14,7 +14,7 @@
 // over a buffer larger than the template, from a zero start, and the 64x64 template is
 // cropped away from the start-up edges. sigma scales the template at synthesis, and the
 // colour term p1 needs the other component's grain, so both are synthesis stages (see
-// tr_synthesis); the template is the grain of sigma = 1 without the colour term.
+// reference_stripe); the template is the grain of sigma = 1 without the colour term.
 //
 // The filter arithmetic is the VersatileFilmGrain reference's (82x73 buffer, 3 samples of
 // filter support, crop at (9, 9), weights rounded to 1/2^L, half-amplitude Gaussian noise,

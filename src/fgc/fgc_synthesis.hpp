@@ -1,10 +1,29 @@
-// The frequency-filtering synthesis of one picture from resolved parameters: per component,
-// 16-row (32-row) stripes of grain are built block by block from the templates, deblocked
-// at vertical block edges and blended. Stripes are independent, so they can run in any
-// order or in parallel with identical output.
+// The frequency-filtering synthesis of one picture from resolved parameters, for every
+// flavour but vfgs (rdd5, ffmpeg, vtm, tr): per component, 16-row (32-row) stripes of grain
+// are built block by block from the templates, deblocked at vertical block edges and
+// blended. Stripes are independent, so they can run in any order or in parallel with
+// identical output.
+//
+// Two implementations of a stripe, chosen per picture:
+//  - the scalar reference (reference_stripe.cpp), stage by stage as TR 23002-9 clause 7
+//    reads: block randomization, local adaptation (square blocks or single-line segments),
+//    the interval's template (frequency-filtered or auto-regressive) scaled by
+//    comp_model_value[0] >> (log2_scale_factor + 6 - film_grain_model_id), deblocking,
+//    the colour term of model 1, additive or multiplicative blending. It covers everything
+//    the tr flavour allows; with model 0, additive blending and square blocks it is the
+//    rdd5 (HM-2020), ffmpeg or vtm (HM/VTM) reference, depending on the flavour's
+//    local-adaptation and deblocking rules;
+//  - the optimized twin (optimized_stripe.cpp): pre-scaled tables and fused vector
+//    deblocking + blending, for model 0 with additive blending, square blocks and the
+//    rdd5, vtm or tr flavour. Tests prove it equal to the reference.
+//
+// film_grain_model_id 1 (tr): the colour correlation p1 of a chroma component reads the
+// previous component's finished grain, so such a component's stripes run after all of the
+// previous component's (colour_correlation.hpp).
 #pragma once
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -31,9 +50,13 @@ int default_block_size(FgcFlavour flavour, int luma_width, int luma_height);
 
 class FgcFrameSynthesis {
 public:
-    // block_size: 8, 16 or 32. threads: stripe workers including the caller (0 = every
-    // hardware thread); the output is the same for any count.
-    FgcFrameSynthesis(FgcFlavour flavour, int block_size, int threads = 1, Kernels kernels = Kernels::kOptimized);
+    // flavour: rdd5, ffmpeg, vtm or tr (vtm: VVC DCT-2 templates and edge-replicated
+    // averages over whole blocks; the others: the RDD 5 matrix and averages of the samples
+    // inside the picture). block_size: 8, 16 or 32. threads: stripe workers including the
+    // caller (0 = every hardware thread); the output is the same for any count.
+    // single_line_blocks (vtm, tr): 0 or the block size, TR 23002-9 7.3.2.3's N x 1 segments.
+    FgcFrameSynthesis(FgcFlavour flavour, int block_size, int threads = 1, Kernels kernels = Kernels::kOptimized,
+                      int single_line_blocks = 0);
     ~FgcFrameSynthesis();
 
     // Builds whatever templates `params` needs (the only allocation after the first frame
@@ -45,7 +68,10 @@ public:
     void apply(const ResolvedFgc& params, const FrameView& src, const FrameView& dst, int32_t pic_offset);
 
     int block_size() const { return block_size_; }
+    int single_line_blocks() const { return single_line_; }
     const TemplateCache& templates() const { return cache_; }
+    // Templates built so far: frequency-filtered and auto-regressive.
+    int templates_built() const { return cache_.built_count() + int(ar_cache_.size()); }
     // Bytes of the scaled template tables of the optimized path (ScaledTemplates).
     std::size_t scaled_template_bytes() const;
 
@@ -61,6 +87,7 @@ private:
     struct Scratch {
         std::vector<int32_t> stripe;          // reference path
         std::vector<uint8_t> has_grain;       // ... ffmpeg flavour: the blocks that got grain
+        std::vector<int16_t> rho;             // ... model 1: p1 of each sample's interval
         std::vector<uint32_t> sums;           // block sums of the stripe's block rows
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
         std::vector<const int8_t*> narrow_blocks;  // ... when the tables are int8
@@ -70,9 +97,12 @@ private:
         std::vector<int16_t> scaled;          // components without scaled tables: blocks scaled here
         std::vector<simd::BlockCopy> copies;  // ... by these copies
     };
+    // Whether the optimized stripes give this picture's output (see the top of this file).
+    bool optimized_for(const ResolvedFgc& params, const FrameView& src) const;
+    // Writes plane_grain_[c] when the next component's colour term reads it.
     template <typename Pixel>
-    void reference_stripe(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst, int bit_depth,
-                          int by, Scratch& scratch) const;
+    void reference_stripe(const ResolvedFgc& params, int c, const FrameView& src, const FrameView& dst, int by,
+                          Scratch& scratch);
     // prefetch_next: the same thread takes the stripe below next (its rows are prefetched)
     template <typename Pixel>
     void optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src, const PlaneView& dst,
@@ -84,8 +114,17 @@ private:
 
     FgcFlavour flavour_;
     int block_size_;
+    int single_line_;
     Kernels kernels_;
     TemplateCache cache_;
+    // Auto-regressive templates (model 1) by (component, log2_scale_factor, p0, p2, A, p3).
+    std::map<std::array<int, 6>, std::unique_ptr<GrainTemplate>> ar_cache_;
+    // For the picture being synthesized: each interval's template, per component (reference path).
+    std::array<std::vector<const GrainTemplate*>, 3> interval_template_;
+    // Model 1: which components add the colour term, and which keep their finished grain for it.
+    std::array<bool, 3> correlate_{};
+    std::array<bool, 3> keep_grain_{};
+    std::array<std::vector<int32_t>, 3> plane_grain_;
     std::unique_ptr<ThreadPool> pool_;
     std::vector<uint32_t> states_[3];
     ScaledTemplates scaled_[3];

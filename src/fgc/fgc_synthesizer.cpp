@@ -53,8 +53,7 @@ void FgcSynthesizer::reset() {
 }
 
 int FgcSynthesizer::templates_built() const {
-    return (synthesis_ ? synthesis_->templates().built_count() : 0) +
-           (tr_synthesis_ ? tr_synthesis_->templates_built() : 0);
+    return synthesis_ ? synthesis_->templates_built() : 0;
 }
 
 std::size_t FgcSynthesizer::scratch_bytes() const { return synthesis_ ? synthesis_->scratch_bytes() : 0; }
@@ -62,7 +61,7 @@ std::size_t FgcSynthesizer::scratch_bytes() const { return synthesis_ ? synthesi
 std::size_t FgcSynthesizer::working_bytes() const {
     if (!synthesis_) return 0;
     return synthesis_->scratch_bytes() + synthesis_->scaled_template_bytes() +
-           std::size_t(synthesis_->templates().built_count()) * sizeof(fgc::GrainTemplate);
+           std::size_t(synthesis_->templates_built()) * sizeof(fgc::GrainTemplate);
 }
 
 namespace {
@@ -184,17 +183,12 @@ FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst,
     uint32_t offset = uint32_t(ids.poc);
     if (options_.flavour != FgcFlavour::kVtm) offset += uint32_t(ids.idr_pic_id) << 5;
     const int32_t pic_offset = int32_t(offset);
-    if (options_.flavour == FgcFlavour::kTr || options_.single_line_blocks) {
-        if (!tr_synthesis_ || tr_synthesis_->block_size() != bs)
-            tr_synthesis_ = std::make_unique<fgc::TrFrameSynthesis>(options_.flavour, bs, options_.single_line_blocks);
-        tr_synthesis_->apply(*a.resolved, src, dst, pic_offset);
-    } else {
-        if (!synthesis_ || synthesis_->block_size() != bs)
-            synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(
-                options_.flavour, bs, options_.threads,
-                options_.reference_kernels ? fgc::Kernels::kReference : fgc::Kernels::kOptimized);
-        synthesis_->apply(*a.resolved, src, dst, pic_offset);
-    }
+    if (!synthesis_ || synthesis_->block_size() != bs)
+        synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(
+            options_.flavour, bs, options_.threads,
+            options_.reference_kernels ? fgc::Kernels::kReference : fgc::Kernels::kOptimized,
+            options_.single_line_blocks);
+    synthesis_->apply(*a.resolved, src, dst, pic_offset);
     bool any = false;
     for (int c = 0; c < src.plane_count(); c++) any |= a.resolved->comp[c].present;
     result.grain_applied = any;

@@ -8,7 +8,6 @@
 
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/params_resolution.hpp"
-#include "fgc/tr_synthesis.hpp"
 #include "filmgrain/fgc_params.hpp"
 #include "filmgrain/frame.hpp"
 
@@ -77,7 +76,6 @@ private:
     FgcCodec pending_codec_ = FgcCodec::kHevc;
     std::unique_ptr<Active> active_;
     std::unique_ptr<fgc::FgcFrameSynthesis> synthesis_;
-    std::unique_ptr<fgc::TrFrameSynthesis> tr_synthesis_;  // tr flavour, single-line blocks
 };
 
 }  // namespace filmgrain

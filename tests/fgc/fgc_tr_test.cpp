@@ -1,4 +1,4 @@
-// The tr flavour and single-line blocks (src/fgc/tr_synthesis, ar_template_generation,
+// The tr flavour and single-line blocks (src/fgc/reference_stripe, colour_correlation, ar_template_generation,
 // multiplicative_blending): equal to rdd5 / vtm where those accept the SEI, and statistical
 // tests of what no reference implements: the auto-regressive model (autocorrelation at lag
 // 1 and 2 against the coefficients, variance against intensity, colour correlation),
@@ -17,7 +17,6 @@
 #include "fgc/ar_template_generation.hpp"
 #include "fgc/fgc_synthesis.hpp"
 #include "fgc/fgc_synthesizer.hpp"
-#include "fgc/tr_synthesis.hpp"
 #include "fgc/vfgs/vfgs_templates.hpp"
 #include "filmgrain/error.hpp"
 
@@ -142,19 +141,46 @@ TEST(FgcTr, EqualsRdd5ForEverythingRdd5Accepts) {
     }
 }
 
-TEST(FgcTr, VtmBaseEqualsTheVtmSynthesis) {
-    // The single-line path runs TrFrameSynthesis on the vtm base; with square blocks that
-    // base must be the vtm flavour's synthesis bit for bit.
+TEST(FgcTr, ReferenceStripeEqualsTheOptimizedOneForEveryFlavourItServes) {
+    // One scalar reference serves rdd5, vtm and tr (and single-line blocks, model 1 and
+    // multiplicative blending, which only it runs); where the optimized stripes also run,
+    // on model 0 with additive blending and square blocks, both give the same bytes.
     std::mt19937 rng(3);
-    for (int bs : {8, 16, 32}) {
-        const PixelFormat f{ChromaFormat::k420, 10};
-        FrameBuffer in = picture(260, 140, f, [&](int, int, int) { return int(rng() % 1024); });
-        const FgcParams p = ff_params(300);
-        fgc::ResolvedFgc r = fgc::resolve_fgc_params(p, FgcFlavour::kVtm, {f.chroma, 10, 260, 140});
-        FrameBuffer a(260, 140, f), b(260, 140, f);
-        fgc::FgcFrameSynthesis(FgcFlavour::kVtm, bs).apply(r, in.view(), a.view(), 9);
-        fgc::TrFrameSynthesis(FgcFlavour::kVtm, bs, 0).apply(r, in.view(), b.view(), 9);
-        EXPECT_EQ(std::memcmp(a.bytes(), b.bytes(), a.byte_size()), 0) << "block " << bs;
+    for (FgcFlavour flavour : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kTr})
+        for (int bs : {8, 16, 32}) {
+            const PixelFormat f{ChromaFormat::k420, 10};
+            FrameBuffer in = picture(260, 140, f, [&](int, int, int) { return int(rng() % 1024); });
+            const FgcParams p = ff_params(300);
+            fgc::ResolvedFgc r = fgc::resolve_fgc_params(p, flavour, {f.chroma, 10, 260, 140});
+            FrameBuffer a(260, 140, f), b(260, 140, f);
+            fgc::FgcFrameSynthesis(flavour, bs, 1, fgc::Kernels::kOptimized).apply(r, in.view(), a.view(), 9);
+            fgc::FgcFrameSynthesis(flavour, bs, 2, fgc::Kernels::kReference).apply(r, in.view(), b.view(), 9);
+            EXPECT_EQ(std::memcmp(a.bytes(), b.bytes(), a.byte_size()), 0)
+                << fgc_flavour_name(flavour) << " block " << bs;
+        }
+}
+
+TEST(FgcTr, ModelOneAndSingleLineOutputsDoNotDependOnTheThreadCount) {
+    // The colour term makes Cb wait for luma's finished grain and Cr for Cb's; every
+    // component's stripes still run in parallel.
+    std::mt19937 rng(5);
+    const PixelFormat f{ChromaFormat::k420, 8};
+    FrameBuffer in = picture(198, 133, f, [&](int, int, int) { return int(rng() % 256); });
+    FgcParams p = ar_params({120, 9, 0, 4, 32, -3});
+    p.comp[1] = p.comp[0];
+    p.comp[1].intervals[0].comp_model_value = {90, 6, 12, 2, 32, 0};  // p1 = 12: colour term
+    p.comp[2] = p.comp[1];
+    p.blending_mode_id = 1;
+    for (int single_line : {0, 16}) {
+        const fgc::ResolvedFgc r = fgc::resolve_fgc_params(p, FgcFlavour::kTr, {f.chroma, 8, 198, 133});
+        const int bs = single_line ? single_line : 8;
+        FrameBuffer a(198, 133, f), b(198, 133, f);
+        fgc::FgcFrameSynthesis(FgcFlavour::kTr, bs, 1, fgc::Kernels::kOptimized, single_line)
+            .apply(r, in.view(), a.view(), 4);
+        fgc::FgcFrameSynthesis(FgcFlavour::kTr, bs, 3, fgc::Kernels::kOptimized, single_line)
+            .apply(r, in.view(), b.view(), 4);
+        EXPECT_EQ(std::memcmp(a.bytes(), b.bytes(), a.byte_size()), 0) << "single-line " << single_line;
+        EXPECT_NE(std::memcmp(a.bytes(), in.bytes(), a.byte_size()), 0) << "grain was added";
     }
 }
 

@@ -128,7 +128,7 @@ TEST(FgcValueRanges, NegativeScaleFactorIsRefusedByEveryFlavourOnEveryPath) {
 }
 
 TEST(FgcValueRanges, NegativeSigmaOfTheAutoRegressiveModelIsRefused) {
-    // tr synthesized sigma * template in int32: -2^30 overflowed (tr_synthesis.cpp).
+    // tr synthesized sigma * template in int32: -2^30 overflowed (the reference stripe, reference_stripe.cpp).
     for (FgcFlavour fl : {FgcFlavour::kTr, FgcFlavour::kVfgs})
         for (int value : {-1, -(1 << 30)}) {
             // vfgs checks at set_params, before the picture's bit depth is known (16 bits)
