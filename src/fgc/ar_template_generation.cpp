@@ -30,7 +30,7 @@ ArWeights ar_weights(const std::array<int, 6>& value, int log2_scale_factor) {
     return w;
 }
 
-ArTemplate make_ar_template_rdd5_noise(const std::array<int, 6>& value, int log2_scale_factor, int seed_index) {
+GrainTemplate make_ar_template_rdd5_noise(const std::array<int, 6>& value, int log2_scale_factor, int seed_index) {
     uint32_t r = kSeedLut[seed_index & 0xFF];
     return make_ar_template(ar_weights(value, log2_scale_factor), [&r] {
         const int n = (kGaussianLut[r & 2047u] + 1) >> 1;

@@ -25,10 +25,9 @@
 #include <cstdint>
 #include <vector>
 
-namespace filmgrain::fgc {
+#include "fgc/grain_template.hpp"
 
-inline constexpr int kArTemplateSize = 64;
-using ArTemplate = std::array<std::array<int8_t, kArTemplateSize>, kArTemplateSize>;  // [row][column]
+namespace filmgrain::fgc {
 
 // Value completion for film_grain_model_id = 1 when `num_values` (1..6) are signalled:
 // p0, p1, p2, p3 default to 0 and A to 1, i.e. 1 << log2_scale_factor.
@@ -46,7 +45,7 @@ ArWeights ar_weights(const std::array<int, 6>& value, int log2_scale_factor);
 // Runs the filter with the noise that `next_noise()` returns sample by sample in raster
 // order over the work buffer, and crops the template.
 template <typename NoiseSource>
-ArTemplate make_ar_template(const ArWeights& w, NoiseSource&& next_noise) {
+GrainTemplate make_ar_template(const ArWeights& w, NoiseSource&& next_noise) {
     constexpr int kW = 82, kH = 73, kMargin = 3, kCrop = 9;
     const int L = w.log2_scale_factor;
     std::vector<int> buf(static_cast<std::size_t>(kW) * kH, 0);
@@ -62,15 +61,15 @@ ArTemplate make_ar_template(const ArWeights& w, NoiseSource&& next_noise) {
             g += next_noise();
             buf[static_cast<std::size_t>(y) * kW + x] = g < -127 ? -127 : (g > 127 ? 127 : g);
         }
-    ArTemplate t{};
-    for (int y = 0; y < kArTemplateSize; ++y)
-        for (int x = 0; x < kArTemplateSize; ++x) t[y][x] = static_cast<int8_t>(at(kCrop + y, kCrop + x));
+    GrainTemplate t{};
+    for (int y = 0; y < kTemplateSize; ++y)
+        for (int x = 0; x < kTemplateSize; ++x) t[y][x] = static_cast<int8_t>(at(kCrop + y, kCrop + x));
     return t;
 }
 
 // The tr flavour's template: the filter driven by the RDD 5 generator (Gaussian_LUT read at
 // the 32-bit LFSR state, one step per sample, half amplitude) started from
 // Seed_LUT[seed_index]; the flavour uses seed index c for colour component c.
-ArTemplate make_ar_template_rdd5_noise(const std::array<int, 6>& value, int log2_scale_factor, int seed_index);
+GrainTemplate make_ar_template_rdd5_noise(const std::array<int, 6>& value, int log2_scale_factor, int seed_index);
 
 }  // namespace filmgrain::fgc

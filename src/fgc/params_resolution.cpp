@@ -11,15 +11,15 @@ namespace {
 
 [[noreturn]] void invalid(const std::string& msg) { throw Error(ErrorCode::kInvalidParams, msg); }
 
-std::string cmv(int c, int i, int j) {
-    return "comp_model_value[" + std::to_string(c) + "][" + std::to_string(i) + "][" + std::to_string(j) + "]";
-}
-
 // HM (both generations) counts at most 10 distinct cut-off pairs over all components,
 // after the chroma conversion (RDD 5 limits the template database to 10 entries).
 constexpr int kMaxCutoffPairs = 10;
 
 }  // namespace
+
+std::string comp_model_value_name(int c, int i, int j) {
+    return "comp_model_value[" + std::to_string(c) + "][" + std::to_string(i) + "][" + std::to_string(j) + "]";
+}
 
 int film_grain_bit_depth(const FgcParams& p, int c, int picture_bit_depth) {
     if (p.separate_colour_description_present_flag)
@@ -80,7 +80,7 @@ void check_fgc_syntax_ranges(const FgcParams& p, int picture_bit_depth) {
                     : picture_bit_depth > 0 ? "the picture's bit depth"
                                             : "the deepest picture, 16 bits; the picture's bit depth narrows it";
                 const bool scale = p.film_grain_model_id == 0 || j == 0;
-                invalid(out_of_range_message(cmv(c, int(i), j), v, r.lo, r.hi) + " (film_grain_model_id " +
+                invalid(out_of_range_message(comp_model_value_name(c, int(i), j), v, r.lo, r.hi) + " (film_grain_model_id " +
                         std::to_string(p.film_grain_model_id) + ": " +
                         (scale ? "0..2^filmGrainBitDepth - 1" : "-2^(filmGrainBitDepth - 1)..2^(filmGrainBitDepth - 1) - 1") +
                         ", filmGrainBitDepth[" + std::to_string(c) + "] = " + std::to_string(bd) + " from " + depth + ")");
@@ -231,7 +231,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
             // Negative values never get here (check_fgc_syntax_ranges): the scale factor and
             // sigma are 0 or more, so the products of synthesis stay within int32.
             if (ri.scale > max_scale)
-                invalid(out_of_range_message(cmv(c, int(i), 0), ri.scale, 0, max_scale) + " (" +
+                invalid(out_of_range_message(comp_model_value_name(c, int(i), 0), ri.scale, 0, max_scale) + " (" +
                         std::to_string(max_scale) + max_scale_why);
             if (model == 1) {
                 // Auto-regressive model (tr). No chroma conversion is defined for it: the
@@ -241,10 +241,10 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                 const int one = 1 << p.log2_scale_factor;
                 for (int j : {1, 2, 3, 5})
                     if (ri.ar[j] < -one || ri.ar[j] > one)
-                        invalid(out_of_range_message(cmv(c, int(i), j), ri.ar[j], -one, one) +
+                        invalid(out_of_range_message(comp_model_value_name(c, int(i), j), ri.ar[j], -one, one) +
                                 " (a correlation from -1 to 1 in units of 2^-log2_scale_factor)");
                 if (ri.ar[4] < 0 || ri.ar[4] > 4 * one)
-                    invalid(out_of_range_message(cmv(c, int(i), 4), ri.ar[4], 0, 4 * one) +
+                    invalid(out_of_range_message(comp_model_value_name(c, int(i), 4), ri.ar[4], 0, 4 * one) +
                             " (an aspect ratio from 0 to 4 in units of 2^-log2_scale_factor)");
                 rc.intervals.push_back(ri);
                 continue;
@@ -255,9 +255,9 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
             int h = nmv >= 2 ? iv.comp_model_value[1] : ffmpeg ? 0 : 8;
             int v = nmv >= 3 ? iv.comp_model_value[2] : ffmpeg ? 0 : h;
             if (!ffmpeg && (h < 2 || h > 14))
-                invalid(out_of_range_message(nmv >= 2 ? cmv(c, int(i), 1) : "default horizontal cut-off", h, 2, 14));
+                invalid(out_of_range_message(nmv >= 2 ? comp_model_value_name(c, int(i), 1) : "default horizontal cut-off", h, 2, 14));
             if (!ffmpeg && (v < 2 || v > 14))
-                invalid(out_of_range_message(nmv >= 3 ? cmv(c, int(i), 2) : "inferred vertical cut-off (= comp_model_value[" +
+                invalid(out_of_range_message(nmv >= 3 ? comp_model_value_name(c, int(i), 2) : "inferred vertical cut-off (= comp_model_value[" +
                                                                                  std::to_string(c) + "][" + std::to_string(i) + "][1])",
                                              v, 2, 14));
             // The references' chroma conversion: the model describes grain at luma resolution.
@@ -278,7 +278,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                 if (!ffmpeg && int(r.cutoff_pairs.size()) > kMaxCutoffPairs)
                     invalid("the parameter set uses " + std::to_string(r.cutoff_pairs.size()) +
                             " distinct (horizontal, vertical) cut-off pairs after chroma conversion, first excess at " +
-                            cmv(c, int(i), 1) + " (allowed at most 10)");
+                            comp_model_value_name(c, int(i), 1) + " (allowed at most 10)");
             }
             rc.intervals.push_back(ri);
         }

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "filmgrain/fgc_params.hpp"
@@ -70,6 +71,9 @@ int film_grain_bit_depth(const FgcParams& params, int c, int picture_bit_depth);
 // scale factor of model 0, 0 .. 2^filmGrainBitDepth[c] - 1, and the vfgs goldens signal
 // sigma up to 255 at 8 bits, so it has model 0's range (a negative deviation means nothing).
 // Reserved model ids (2, 3) have no range: se(v) carries any int32.
+// "comp_model_value[c][i][j]", as every error about one names it.
+std::string comp_model_value_name(int c, int i, int j);
+
 struct ValueRange {
     long long lo = 0;
     long long hi = 0;

@@ -23,32 +23,41 @@ void fill_template_coefficients(int cutoff_h, int cutoff_v, int32_t coeff[kTempl
     coeff[0][0] = 0;
 }
 
+void inverse_transform_2d(const int32_t* coeff, int n, TemplateTransform transform, int matrix_step, int first_shift,
+                          int second_shift, bool rows_follow_first_index, GrainTemplate& out) {
+    const bool vvc = transform == TemplateTransform::kVvcDct2;
+    auto m = [&](int freq, int pos) -> int32_t {
+        return vvc ? kVvcDct2_64[freq * matrix_step][pos] : kRdd5Idct64[freq * matrix_step][pos];
+    };
+    static_assert(kTemplateSize == 64);
+    // tmp[a][b]: position a along the first index, frequency b along the second.
+    std::array<std::array<int32_t, kTemplateSize>, kTemplateSize> tmp;
+    const int32_t round1 = 1 << (first_shift - 1), round2 = 1 << (second_shift - 1);
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++) {
+            int32_t s = round1;
+            for (int k = 0; k < n; k++) s += m(k, a) * coeff[std::size_t(k) * std::size_t(n) + std::size_t(b)];
+            tmp[std::size_t(a)][std::size_t(b)] = s >> first_shift;
+        }
+    for (int a = 0; a < n; a++)
+        for (int b = 0; b < n; b++) {
+            int32_t s = round2;
+            for (int k = 0; k < n; k++) s += tmp[std::size_t(a)][std::size_t(k)] * m(k, b);
+            const int8_t v = int8_t(std::clamp(s >> second_shift, -127, 127));
+            if (rows_follow_first_index)
+                out[std::size_t(a)][std::size_t(b)] = v;
+            else
+                out[std::size_t(b)][std::size_t(a)] = v;
+        }
+}
+
 void inverse_transform_template(const int32_t coeff[kTemplateSize][kTemplateSize], TemplateTransform transform,
                                 GrainTemplate& out) {
-    const bool vvc = transform == TemplateTransform::kVvcDct2;
-    const int shift = vvc ? 9 : 8;
-    const int32_t round = 1 << (shift - 1);
-    auto m = [&](int freq, int pos) -> int32_t {
-        return vvc ? kVvcDct2_64[freq][pos] : kRdd5Idct64[freq][pos];
-    };
-    // First pass over the horizontal frequency index k: tmp[i][j] = sum_k M[k][i] * coeff[k][j].
-    static_assert(kTemplateSize == 64);
-    std::array<std::array<int32_t, 64>, 64> tmp;
-    for (int i = 0; i < 64; i++)
-        for (int j = 0; j < 64; j++) {
-            int32_t s = 0;
-            for (int k = 0; k < 64; k++) s += m(k, i) * coeff[k][j];
-            tmp[i][j] = (s + round) >> shift;
-        }
-    // Second pass over the vertical frequency: grain[i][j] = sum_k tmp[i][k] * M[k][j];
-    // i is the horizontal position and j the vertical one, so the template row is j.
-    for (int i = 0; i < 64; i++)
-        for (int j = 0; j < 64; j++) {
-            int32_t s = 0;
-            for (int k = 0; k < 64; k++) s += tmp[i][k] * m(k, j);
-            s = (s + round) >> shift;
-            out[j][i] = int8_t(std::clamp(s, -127, 127));
-        }
+    // coeff[k][l]: k the horizontal frequency, so pass 1 is horizontal and the template row
+    // is the second index's (vertical) position. RDD 5 rounds both passes by >> 8, HM's
+    // VVC DCT-2 by >> 9.
+    const int shift = transform == TemplateTransform::kVvcDct2 ? 9 : 8;
+    inverse_transform_2d(&coeff[0][0], kTemplateSize, transform, 1, shift, shift, false, out);
 }
 
 void predeblock_template_rows(GrainTemplate& t, int cutoff_v, int block_size) {

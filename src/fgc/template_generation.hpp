@@ -6,12 +6,11 @@
 #include <cstdint>
 #include <memory>
 
+#include "fgc/grain_template.hpp"
 #include "filmgrain/fgc_params.hpp"
 
 namespace filmgrain::fgc {
 
-inline constexpr int kTemplateSize = 64;
-using GrainTemplate = std::array<std::array<int8_t, kTemplateSize>, kTemplateSize>;  // [row][column]
 
 // Which inverse transform and rounding the template uses.
 enum class TemplateTransform { kRdd5Matrix, kVvcDct2 };
@@ -20,6 +19,17 @@ enum class TemplateTransform { kRdd5Matrix, kVvcDct2 };
 // vertical frequencies, filled four at a time from the Gaussian table with the LFSR seeded
 // from Seed_LUT[h-2 + 13(v-2)]; DC is zeroed.
 void fill_template_coefficients(int cutoff_h, int cutoff_v, int32_t coeff[kTemplateSize][kTemplateSize]);
+
+// The 2-D inverse transform every frequency-filtered template goes through (the flavours
+// differ only in its parameters): pass 1 sums over the first index of the n x n row-major
+// block `coeff` and rounds by >> first_shift, pass 2 sums over the second index and rounds
+// by >> second_shift; the result is clipped to +-127. rows_follow_first_index: template row
+// r holds the positions along the first index (VFGS, whose coefficient rows are vertical
+// frequencies), else along the second (RDD 5 / HM, whose first index is horizontal).
+// matrix_step 2 takes the even rows of the 64-point matrix: the 32-point basis times
+// sqrt 2 (VFGS's 4:2:0 chroma, n = 32).
+void inverse_transform_2d(const int32_t* coeff, int n, TemplateTransform transform, int matrix_step, int first_shift,
+                          int second_shift, bool rows_follow_first_index, GrainTemplate& out);
 
 // Scalar reference: inverse transform of the coefficients, clipped to +-127.
 // RDD 5: two passes with the RDD 5 matrix, each (x + 128) >> 8.

@@ -204,8 +204,8 @@ TEST(FgcTrAr, SharedFilterIsTheVfgsOneWithTheVfgsNoise) {
     // vfgs' bit-exact model-1 template runs the shared filter; fed the same values, the tr
     // template differs only by its random source, so it has the same statistics.
     const std::array<int, 6> v{0, 12, 0, 3, 32, -2};
-    const vfgs::Template a = vfgs::make_ar_template_luma(v, 5);
-    const fgc::ArTemplate b = fgc::make_ar_template_rdd5_noise(v, 5, 0);
+    const vfgs::GrainTemplate a = vfgs::make_ar_template_luma(v, 5);
+    const fgc::GrainTemplate b = fgc::make_ar_template_rdd5_noise(v, 5, 0);
     auto stats = [](const auto& t) {
         std::vector<double> g;
         for (const auto& row : t)

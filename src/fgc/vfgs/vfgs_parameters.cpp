@@ -16,9 +16,7 @@ std::string comp_field(const char* name, int c) { return std::string(name) + "["
 std::string row_field(const char* name, int c, int i) {
     return std::string(name) + "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
 }
-std::string value_field(int c, int i, int m) {
-    return "comp_model_value[" + std::to_string(c) + "][" + std::to_string(i) + "][" + std::to_string(m) + "]";
-}
+std::string value_field(int c, int i, int m) { return fgc::comp_model_value_name(c, i, m); }
 
 [[noreturn]] void fail(ErrorCode code, const std::string& msg) { throw Error(code, "vfgs: " + msg); }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fgc/ar_template_generation.hpp"
+#include "fgc/template_generation.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_tables.hpp"
@@ -14,40 +15,25 @@ namespace filmgrain::vfgs {
 
 namespace {
 
-int clip127(int v) { return std::clamp(v, -127, 127); }
-
-// Inverse 2-D DCT of an n x n coefficient block (n = 64, or 32 using the even
-// rows of the 64-point matrix, which are the 32-point basis scaled by sqrt 2).
-// Pass 1 (vertical): X[j][i] = (sum_k M[k][j] * B[k][i] + r1) >> s1.
-// Pass 2 (horizontal): out[j][i] = clip((sum_k X[j][k] * M[k][i] + 256) >> 9).
-// The 32-point chroma case uses s1 = 8 to compensate the sqrt 2 of the
-// even-row basis once; that is VFGS's normalisation, kept for bit-exactness.
-void inverse_dct(const std::vector<int>& coef, int n, Template& out) {
-    const int step = kTemplateSize / n;  // 1 for 64, 2 for 32
-    const int s1 = (n == kTemplateSize) ? 9 : 8;
-    std::vector<int> x(static_cast<size_t>(n) * n);
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            int acc = 1 << (s1 - 1);
-            for (int k = 0; k < n; ++k) acc += kDct2Matrix64[k * step][j] * coef[k * n + i];
-            x[j * n + i] = acc >> s1;
-        }
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            int acc = 256;
-            for (int k = 0; k < n; ++k) acc += x[j * n + k] * kDct2Matrix64[k * step][i];
-            out[j][i] = static_cast<int8_t>(clip127(acc >> 9));
-        }
+// VFGS's inverse DCT-2 of an n x n block (n = 64, or 32 with the even rows of the 64-point
+// matrix): the shared two-pass transform (fgc/template_generation), vertical pass first,
+// since VFGS's coefficient rows are vertical frequencies; HM transforms horizontally first,
+// and the rounding between the passes makes the orders differ. The 32-point chroma case
+// rounds pass 1 by >> 8 to compensate the sqrt 2 of the even-row basis once; that is VFGS's
+// normalisation, kept for bit-exactness.
+void inverse_dct(const std::vector<int32_t>& coef, int n, GrainTemplate& out) {
+    fgc::inverse_transform_2d(coef.data(), n, fgc::TemplateTransform::kVvcDct2, kTemplateSize / n,
+                              n == kTemplateSize ? 9 : 8, 9, true, out);
 }
 
 // Fills the low-frequency corner of an n x n coefficient block with Gaussian
 // values, `group` at a time along the horizontal frequency. The LFSR steps once
 // per group over the whole block, so the values a given frequency receives do
 // not depend on the cut-offs (a lower cut-off only removes coefficients).
-Template frequency_template(int n, int group, uint32_t seed, int h_cutoff, int v_cutoff) {
+GrainTemplate frequency_template(int n, int group, uint32_t seed, int h_cutoff, int v_cutoff) {
     const int kmax = group * (h_cutoff + 1);
     const int lmax = group * (v_cutoff + 1);
-    std::vector<int> coef(static_cast<size_t>(n) * n, 0);
+    std::vector<int32_t> coef(static_cast<size_t>(n) * n, 0);
     uint32_t r = seed;
     for (int l = 0; l < n; ++l)
         for (int k = 0; k < n; k += group) {
@@ -56,22 +42,22 @@ Template frequency_template(int n, int group, uint32_t seed, int h_cutoff, int v
             r = lfsr_next(r);
         }
     coef[0] = 0;  // no DC: the grain is zero-mean
-    Template t{};
+    GrainTemplate t{};
     inverse_dct(coef, n, t);
     return t;
 }
 
 }  // namespace
 
-Template make_frequency_template_luma(int h_cutoff, int v_cutoff) {
+GrainTemplate make_frequency_template_luma(int h_cutoff, int v_cutoff) {
     return frequency_template(kTemplateSize, 4, kSeedLut[0], h_cutoff, v_cutoff);
 }
 
-Template make_frequency_template_chroma420(int h_cutoff, int v_cutoff) {
+GrainTemplate make_frequency_template_chroma420(int h_cutoff, int v_cutoff) {
     return frequency_template(kChromaTemplateSize, 2, kSeedLut[1], h_cutoff, v_cutoff);
 }
 
-Template make_ar_template_luma(const std::array<int, 6>& value, int log2_scale_factor) {
+GrainTemplate make_ar_template_luma(const std::array<int, 6>& value, int log2_scale_factor) {
     // The shared AR filter (fgc/ar_template_generation) driven by VFGS's random source:
     // (Gaussian_LUT[r & 2047] + 1) >> 1, r stepping once per sample from Seed_LUT[0].
     uint32_t r = kSeedLut[0];

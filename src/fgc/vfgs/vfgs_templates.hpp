@@ -12,26 +12,27 @@
 #include <array>
 #include <cstdint>
 
+#include "fgc/grain_template.hpp"
+
 namespace filmgrain::vfgs {
 
 struct ResolvedParams;
 
-inline constexpr int kTemplateSize = 64;       // luma (and storage) size
+using fgc::GrainTemplate;                      // every flavour's template type
+using fgc::kTemplateSize;                      // luma (and storage) size
 inline constexpr int kChromaTemplateSize = 32; // 4:2:0 chroma, stored in the top-left corner
 inline constexpr int kMaxTemplates = 8;        // per pool (luma; Cb+Cr share the chroma pool)
-
-using Template = std::array<std::array<int8_t, kTemplateSize>, kTemplateSize>;
 
 // Model 0 luma template: coefficients B[l][k] = Gaussian values for
 // k < 4(h+1), l < 4(v+1) (groups of 4 along k, one LFSR step per group even
 // outside the cut-off, starting from Seed_LUT[0]), B[0][0] = 0, then the
 // two-pass integer inverse DCT and a clip to +-127.
-Template make_frequency_template_luma(int h_cutoff, int v_cutoff);
+GrainTemplate make_frequency_template_luma(int h_cutoff, int v_cutoff);
 
 // Model 0 4:2:0 chroma template (32x32 in the top-left of the returned array):
 // Seed_LUT[1], groups of 2, cut-offs 2(h+1) / 2(v+1), the even rows of the
 // 64-point matrix, first pass rounded by >> 8 and second by >> 9.
-Template make_frequency_template_chroma420(int h_cutoff, int v_cutoff);
+GrainTemplate make_frequency_template_chroma420(int h_cutoff, int v_cutoff);
 
 // Model 1 luma template from the completed model values (see
 // vfgs_parameters.hpp) and log2_scale_factor L:
@@ -40,7 +41,7 @@ Template make_frequency_template_chroma420(int h_cutoff, int v_cutoff);
 // left [1], top ([1]*[4]) >> L, top-left/top-right ([3]*[4]) >> L,
 // left-left [5], top-top ([5]*[4]*[4]) >> 2L, rounded by >> L; clip +-127;
 // the template is buf[9 + y][9 + x].
-Template make_ar_template_luma(const std::array<int, 6>& value, int log2_scale_factor);
+GrainTemplate make_ar_template_luma(const std::array<int, 6>& value, int log2_scale_factor);
 
 // Which (component, interval) rows own the template slots of a pool.
 struct PoolSlot {
@@ -77,8 +78,8 @@ int find_template_slot(const TemplatePools& pools, const ResolvedParams& r, int 
 // overwrites the slots the new set uses, and an LUT entry can (through the
 // empty-slot quirk above) point at a slot left from an earlier set.
 struct TemplateBank {
-    std::array<Template, kMaxTemplates> luma{};
-    std::array<Template, kMaxTemplates> chroma{};
+    std::array<GrainTemplate, kMaxTemplates> luma{};
+    std::array<GrainTemplate, kMaxTemplates> chroma{};
 };
 
 // (Re)builds the slots 0..count-1 of both pools.

@@ -19,7 +19,7 @@ struct Stats {
     int maxabs = 0;
 };
 
-Stats stats(const Template& t, int n) {
+Stats stats(const GrainTemplate& t, int n) {
     Stats s;
     double sum = 0, sq = 0, lag = 0;
     for (int y = 0; y < n; ++y)
@@ -73,8 +73,8 @@ TEST(VfgsTables, Shapes) {
 }
 
 TEST(VfgsTemplates, FrequencyLumaStatistics) {
-    const Template wide = make_frequency_template_luma(14, 14);
-    const Template narrow = make_frequency_template_luma(2, 2);
+    const GrainTemplate wide = make_frequency_template_luma(14, 14);
+    const GrainTemplate narrow = make_frequency_template_luma(2, 2);
     const Stats sw = stats(wide, 64), sn = stats(narrow, 64);
     // DC is removed: zero mean (up to rounding), values within +-127.
     EXPECT_LT(std::fabs(sw.mean), 0.5);
@@ -92,7 +92,7 @@ TEST(VfgsTemplates, FrequencyCutoffsOnlyRemoveCoefficients) {
     // The LFSR steps over every group whatever the cut-off, so the template of a
     // lower vertical cut-off is a band-limited version of the same noise: its
     // correlation with the wider one is clearly positive.
-    const Template a = make_frequency_template_luma(8, 8), b = make_frequency_template_luma(8, 14);
+    const GrainTemplate a = make_frequency_template_luma(8, 8), b = make_frequency_template_luma(8, 14);
     double ab = 0, aa = 0, bb = 0;
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
@@ -104,7 +104,7 @@ TEST(VfgsTemplates, FrequencyCutoffsOnlyRemoveCoefficients) {
 }
 
 TEST(VfgsTemplates, FrequencyChromaIs32x32) {
-    const Template t = make_frequency_template_chroma420(14, 14);
+    const GrainTemplate t = make_frequency_template_chroma420(14, 14);
     const Stats s = stats(t, 32);
     EXPECT_LT(std::fabs(s.mean), 0.5);
     EXPECT_GT(s.sd, 5.0);
@@ -119,7 +119,7 @@ TEST(VfgsTemplates, FrequencyChromaIs32x32) {
 TEST(VfgsTemplates, ArWithoutCoefficientsIsHalfAmplitudeNoise) {
     // All AR weights 0: buf = (Gaussian_LUT[r & 2047] + 1) >> 1 with r stepping
     // once per sample of the 82-wide buffer; the template is buf[9+y][9+x].
-    const Template t = make_ar_template_luma({100, 0, 0, 0, 32, 0}, 5);
+    const GrainTemplate t = make_ar_template_luma({100, 0, 0, 0, 32, 0}, 5);
     for (int y : {0, 1, 40, 63})
         for (int x : {0, 5, 63}) {
             const uint32_t r = lfsr_advance(kSeedLut[0], static_cast<uint32_t>((9 + y) * 82 + 9 + x));
