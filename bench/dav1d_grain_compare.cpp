@@ -1,7 +1,7 @@
 // In-process A/B of AV1 grain synthesis against dav1d's own: one libdav1d decoder (grain
 // not applied) decodes an IVF stream, and every decoded picture gets its grain twice, from
 // dav1d_apply_grain (dav1d's optimized kernels, into a picture from dav1d's pool) and from
-// filmgrain's Av1Synthesizer (into a reused frame), one thread each. The two are timed on
+// filmgrain's Av1PictureSynthesis (into a reused frame), one thread each. The two are timed on
 // the same picture in the same state of the decode loop, first one then the other in
 // alternating order, so that the whole-process noise of tools/bench-compare (two decodes
 // per difference) is gone. Both outputs are compared: a picture where they differ is an
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
 #include "filmgrain/av1_params.hpp"
 
@@ -124,7 +124,7 @@ void run(const std::string& path, Timings& t) {
     s.apply_grain = 0;
     Dav1dContext* ctx = nullptr;
     check(dav1d_open(&ctx, &s), "dav1d_open");
-    av1::Av1Synthesizer synth(1);
+    av1::Av1PictureSynthesis synth(1);
     FrameBuffer ours;
     std::size_t pos = le32(file.data() + 6) & 0xFFFF;  // header size
     auto take_pictures = [&] {

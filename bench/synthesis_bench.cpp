@@ -13,10 +13,10 @@
 #include "bench_main.hpp"
 #include "bench_params.hpp"
 #include "bench_pictures.hpp"
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 
 using namespace filmgrain;
 
@@ -48,7 +48,7 @@ void BM_Fgc(benchmark::State& state) {
     o.threads = int(state.range(3));
     o.reference_kernels = state.range(4) == 0;
     o.flavour = state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
-    FgcSynthesizer s(o);
+    FgcStreamSynthesis s(o);
     s.receive_sei(fgc_params(bd));
     FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     int poc = 0;
@@ -62,7 +62,7 @@ void BM_Fgc(benchmark::State& state) {
 // args: width, height, bit depth, threads, optimized (0/1)
 void BM_Av1(benchmark::State& state) {
     const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    av1::Av1Synthesizer s(int(state.range(3)), state.range(4) ? av1::Kernels::kOptimized : av1::Kernels::kReference);
+    av1::Av1PictureSynthesis s(int(state.range(3)), state.range(4) ? av1::Kernels::kOptimized : av1::Kernels::kReference);
     Av1FilmGrainParams p = bench::av1_params();
     FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     for (auto _ : state) {

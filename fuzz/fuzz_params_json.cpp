@@ -8,9 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "filmgrain/error.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "metadata/json_access.hpp"
@@ -33,7 +33,7 @@ void synthesize_fgc(const ParamsFile& pf) {
         FgcOptions o;
         o.flavour = flavour;
         o.threads = 1;
-        FgcSynthesizer synth(o);
+        FgcStreamSynthesis synth(o);
         FrameBuffer in = grey_picture(ChromaFormat::k420, flavour == FgcFlavour::kVtm ? 10 : 8);
         FrameBuffer out = in;
         for (std::size_t k = 0; k < pf.frames.size() && k < 3; k++) {

@@ -5,7 +5,7 @@
 #include <complex>
 
 #include "analysis/grain_level.hpp"
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "av1/grain_template_generation.hpp"
 #include "core/frame_buffer.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "analysis/grain_level.hpp"
 #include "core/frame_buffer.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 
 namespace filmgrain::analysis {
 namespace {
@@ -37,7 +37,7 @@ public:
         p.comp[c].intervals = {iv};
         FgcOptions o;
         o.flavour = t_.flavour;
-        FgcSynthesizer synth(o);
+        FgcStreamSynthesis synth(o);
         synth.receive_sei(p);
         synth.apply(clean_.view(), grainy_.view(), FgcPictureIds{0, 0});
         const double g = measure_grain_level(grainy_.view(), clean_.view(), c) / value;

@@ -1,5 +1,5 @@
 // The memory layout of the frames handed to synthesis, checked before any sample is
-// touched. Every model and the session check it (av1::check_frame_view, FgcSynthesizer,
+// touched. Every model and the session check it (av1::check_frame_view, FgcStreamSynthesis,
 // vfgs::Synthesizer).
 #pragma once
 #include <string>

@@ -1,5 +1,7 @@
 #include "fgc/deblocking.hpp"
 
+#include "fgc/fgc_tables.hpp"
+
 namespace filmgrain::fgc {
 
 void deblock_stripe_vertical_edges(int32_t* grain, int stride, int rows, int width, int block_size,
@@ -13,6 +15,15 @@ void deblock_stripe_vertical_edges(int32_t* grain, int stride, int rows, int wid
             row[e - 1] = (l1 + (l0 << 1) + r0) >> 2;
         }
     }
+}
+
+void predeblock_template_rows(GrainTemplate& t, int cutoff_v, int block_size) {
+    const int factor = kDeblockFactor[cutoff_v - 2];
+    for (int l = 0; l < kTemplateSize; l += block_size)
+        for (int k = 0; k < kTemplateSize; k++) {
+            t[l][k] = int8_t((t[l][k] * factor) >> 7);
+            t[l + block_size - 1][k] = int8_t((t[l + block_size - 1][k] * factor) >> 7);
+        }
 }
 
 }  // namespace filmgrain::fgc

@@ -1,7 +1,12 @@
 // Horizontal deblocking of a grain stripe (TR 23002-9 7.3.3, RDD 5 4.4): a [1 2 1]/4
 // filter on the two samples either side of every vertical block edge inside the plane.
+//
+// The vertical deblocking (horizontal block edges, RDD 5 4.2.4) is done once per template
+// instead: predeblock_template_rows.
 #pragma once
 #include <cstdint>
+
+#include "fgc/grain_template.hpp"
 
 namespace filmgrain::fgc {
 
@@ -14,5 +19,10 @@ namespace filmgrain::fgc {
 // k * block_size got grain.
 void deblock_stripe_vertical_edges(int32_t* grain, int stride, int rows, int width, int block_size,
                                    const uint8_t* right_has_grain = nullptr);
+
+// Vertical deblocking inside the template: rows k*block and k*block + block - 1 are
+// scaled by kDeblockFactor[v - 2] / 128, so that blocks cut from the template meet
+// softened at their horizontal edges (RDD 5 4.2.4).
+void predeblock_template_rows(GrainTemplate& t, int cutoff_v, int block_size);
 
 }  // namespace filmgrain::fgc

@@ -1,12 +1,12 @@
-// The optimized stripe of FgcFrameSynthesis, the twin of reference_stripe.cpp for model 0,
-// additive blending and square blocks (see fgc_synthesis.hpp).
+// The optimized stripe of FgcPictureSynthesis, the twin of reference_stripe.cpp for model 0,
+// additive blending and square blocks (see fgc_picture_synthesis.hpp).
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
 
 #include "fgc/block_randomization.hpp"
-#include "fgc/fgc_synthesis.hpp"
+#include "fgc/fgc_picture_synthesis.hpp"
 #include "fgc/local_adaptation.hpp"
 
 namespace filmgrain::fgc {
@@ -25,7 +25,7 @@ template <typename Table>
 alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};
 
 template <typename Pixel, int kBlock, typename Table>
-void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,
+void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,
                                          const PlaneView& dst, int bit_depth, int by, bool prefetch_next,
                                          Scratch& scratch) const {
     constexpr int kRandBlock = kBlock == 32 ? 32 : 16;
@@ -185,7 +185,7 @@ void FgcFrameSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const
 }
 
 template <typename Pixel>
-void FgcFrameSynthesis::optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src,
+void FgcPictureSynthesis::optimized_stripe_of(const ResolvedFgc& params, int c, const PlaneView& src,
                                             const PlaneView& dst, int bit_depth, int by, bool prefetch_next,
                                             Scratch& scratch) const {
     const bool narrow = have_scaled_[c] && scaled_[c].narrow();
@@ -204,9 +204,9 @@ void FgcFrameSynthesis::optimized_stripe_of(const ResolvedFgc& params, int c, co
         run(std::integral_constant<int, 32>{});
 }
 
-template void FgcFrameSynthesis::optimized_stripe_of<uint8_t>(const ResolvedFgc&, int, const PlaneView&,
+template void FgcPictureSynthesis::optimized_stripe_of<uint8_t>(const ResolvedFgc&, int, const PlaneView&,
                                                               const PlaneView&, int, int, bool, Scratch&) const;
-template void FgcFrameSynthesis::optimized_stripe_of<uint16_t>(const ResolvedFgc&, int, const PlaneView&,
+template void FgcPictureSynthesis::optimized_stripe_of<uint16_t>(const ResolvedFgc&, int, const PlaneView&,
                                                                const PlaneView&, int, int, bool, Scratch&) const;
 
 }  // namespace filmgrain::fgc

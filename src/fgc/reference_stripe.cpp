@@ -1,5 +1,5 @@
-// The scalar reference stripe of FgcFrameSynthesis: every flavour and option but vfgs, one
-// stage after the other as TR 23002-9 clause 7 reads (see fgc_synthesis.hpp).
+// The scalar reference stripe of FgcPictureSynthesis: every flavour and option but vfgs, one
+// stage after the other as TR 23002-9 clause 7 reads (see fgc_picture_synthesis.hpp).
 #include <algorithm>
 #include <cstdint>
 
@@ -7,14 +7,15 @@
 #include "fgc/block_randomization.hpp"
 #include "fgc/colour_correlation.hpp"
 #include "fgc/deblocking.hpp"
-#include "fgc/fgc_synthesis.hpp"
+#include "fgc/fgc_picture_synthesis.hpp"
+#include "fgc/grain_scaling.hpp"
 #include "fgc/local_adaptation.hpp"
 #include "fgc/multiplicative_blending.hpp"
 
 namespace filmgrain::fgc {
 
 template <typename Pixel>
-void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const FrameView& src_frame,
+void FgcPictureSynthesis::reference_stripe(const ResolvedFgc& params, int c, const FrameView& src_frame,
                                          const FrameView& dst_frame, int by, Scratch& scratch) {
     const PlaneView& src = src_frame.planes[c];
     const PlaneView& dst = dst_frame.planes[c];
@@ -79,8 +80,7 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
                 const int32_t scale = off.sign * ri.scale;
                 const int8_t* trow = t[std::size_t(off.y + yo + l)].data() + off.x + xo;
                 const std::ptrdiff_t at = std::ptrdiff_t(yo + l) * stride + x0;
-                int32_t* g = stripe + at;
-                for (int k = 0; k < cols; k++) g[k] = (scale * trow[k]) >> shift;
+                scale_template_row(trow, scale, shift, stripe + at, cols);
                 if (correlate) std::fill(rho + at, rho + at + cols, int16_t(ri.ar[2]));
             }
         }
@@ -109,9 +109,9 @@ void FgcFrameSynthesis::reference_stripe(const ResolvedFgc& params, int c, const
     }
 }
 
-template void FgcFrameSynthesis::reference_stripe<uint8_t>(const ResolvedFgc&, int, const FrameView&,
+template void FgcPictureSynthesis::reference_stripe<uint8_t>(const ResolvedFgc&, int, const FrameView&,
                                                            const FrameView&, int, Scratch&);
-template void FgcFrameSynthesis::reference_stripe<uint16_t>(const ResolvedFgc&, int, const FrameView&,
+template void FgcPictureSynthesis::reference_stripe<uint16_t>(const ResolvedFgc&, int, const FrameView&,
                                                             const FrameView&, int, Scratch&);
 
 }  // namespace filmgrain::fgc

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "fgc/deblocking.hpp"
 #include "fgc/fgc_tables.hpp"
 #include "fgc/pseudo_random.hpp"
 
@@ -58,15 +59,6 @@ void inverse_transform_template(const int32_t coeff[kTemplateSize][kTemplateSize
     // VVC DCT-2 by >> 9.
     const int shift = transform == TemplateTransform::kVvcDct2 ? 9 : 8;
     inverse_transform_2d(&coeff[0][0], kTemplateSize, transform, 1, shift, shift, false, out);
-}
-
-void predeblock_template_rows(GrainTemplate& t, int cutoff_v, int block_size) {
-    const int factor = kDeblockFactor[cutoff_v - 2];
-    for (int l = 0; l < kTemplateSize; l += block_size)
-        for (int k = 0; k < kTemplateSize; k++) {
-            t[l][k] = int8_t((t[l][k] * factor) >> 7);
-            t[l + block_size - 1][k] = int8_t((t[l + block_size - 1][k] * factor) >> 7);
-        }
 }
 
 GrainTemplate make_grain_template(int cutoff_h, int cutoff_v, TemplateTransform transform, int block_size) {

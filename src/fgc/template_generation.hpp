@@ -37,11 +37,6 @@ void inverse_transform_2d(const int32_t* coeff, int n, TemplateTransform transfo
 void inverse_transform_template(const int32_t coeff[kTemplateSize][kTemplateSize], TemplateTransform transform,
                                 GrainTemplate& out);
 
-// Vertical deblocking inside the template: rows k*block and k*block + block - 1 are
-// scaled by kDeblockFactor[v - 2] / 128, so that blocks cut from the template meet
-// softened at their horizontal edges (RDD 5 4.2.4).
-void predeblock_template_rows(GrainTemplate& t, int cutoff_v, int block_size);
-
 GrainTemplate make_grain_template(int cutoff_h, int cutoff_v, TemplateTransform transform, int block_size);
 
 // Lazily built templates of one context: only the cut-off pairs pictures use are made.

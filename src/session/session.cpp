@@ -1,17 +1,17 @@
 // Session: the per-stream state behind every entry point (include/filmgrain/session.hpp).
-// It routes metadata to the model it belongs to (FgcSynthesizer for rdd5/vtm/tr,
+// It routes metadata to the model it belongs to (FgcStreamSynthesis for rdd5/vtm/tr,
 // vfgs::Synthesizer, AV1 synthesis) and keeps what a decoder would otherwise have to: SEIs
 // waiting for their output picture, AV1 reference slots, the AFGS1 stored parameter sets,
 // the picture count for callers that pass no ids.
 #include "filmgrain/session.hpp"
 
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "session/av1_reference_slots.hpp"
 #include "session/pending_sei_queue.hpp"
 #include "core/thread_pool.hpp"
-#include "fgc/fgc_synthesis.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_picture_synthesis.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "metadata/afgs1.hpp"
@@ -94,9 +94,9 @@ struct Session::Impl {
     Model model = Model::kNone;
     int pictures_applied = 0;
 
-    // FGC SEI: rdd5 / vtm through FgcSynthesizer, vfgs through its own synthesizer.
+    // FGC SEI: rdd5 / vtm through FgcStreamSynthesis, vfgs through its own synthesizer.
     session::PendingSeiQueue pending;
-    std::unique_ptr<FgcSynthesizer> fgc;
+    std::unique_ptr<FgcStreamSynthesis> fgc;
     std::unique_ptr<vfgs::Synthesizer> vfgs;
     std::string vfgs_invalid;  // why the vfgs parameter set in force cannot be used
 
@@ -105,7 +105,7 @@ struct Session::Impl {
     std::optional<Av1FilmGrainParams> av1;
     int av1_matrix_coefficients = 2;
     // Made on first use: an FGC-only context starts no AV1 worker threads.
-    std::unique_ptr<av1::Av1Synthesizer> av1_synthesizer;
+    std::unique_ptr<av1::Av1PictureSynthesis> av1_synthesizer;
 
     // AFGS1: the stored sets persist across payloads; a payload is for the next picture
     // applied only (as `filmgrain apply --afgs1`: the metadata travels with its frame).
@@ -134,7 +134,7 @@ struct Session::Impl {
             fo.block_size = options.block_size;
             fo.single_line_blocks = options.single_line_blocks;
             fo.reference_kernels = options.reference_kernels;
-            fgc = std::make_unique<FgcSynthesizer>(fo);
+            fgc = std::make_unique<FgcStreamSynthesis>(fo);
         }
         vfgs_invalid.clear();
     }
@@ -207,7 +207,7 @@ struct Session::Impl {
         if (options.clip_to_restricted_range >= 0) p.clip_to_restricted_range = options.clip_to_restricted_range;
         if (info.matrix_coefficients) matrix_coefficients = *info.matrix_coefficients;
         if (!av1_synthesizer)
-            av1_synthesizer = std::make_unique<av1::Av1Synthesizer>(
+            av1_synthesizer = std::make_unique<av1::Av1PictureSynthesis>(
                 options.threads, options.reference_kernels ? av1::Kernels::kReference : av1::Kernels::kOptimized);
         try {
             av1_synthesizer->apply(p, src, dst, matrix_coefficients);

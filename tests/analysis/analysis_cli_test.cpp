@@ -9,7 +9,7 @@
 
 #include "conformance_case.hpp"
 #include "core/frame_buffer.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "io/video_file.hpp"
 #include "io/xz_file.hpp"
 #include "metadata/afgs1.hpp"
@@ -49,7 +49,7 @@ void write_clip(const fs::path& grainy, const fs::path& clean_path, int frames) 
     iv.intensity_interval_upper_bound = 255;
     iv.comp_model_value = {150, 8, 8, 0, 0, 0};
     p.comp[0] = {true, 2, {iv}};
-    FgcSynthesizer s(FgcOptions{});
+    FgcStreamSynthesis s(FgcOptions{});
     for (int k = 0; k < frames; k++) {
         FrameBuffer g = clean;
         s.receive_sei(p);

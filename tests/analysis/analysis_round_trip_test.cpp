@@ -15,8 +15,8 @@
 
 #include "analysis/av1_estimation.hpp"
 #include "analysis/grain_analyzer.hpp"
-#include "av1/av1_synthesis.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "av1/av1_picture_synthesis.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "synthetic_content.hpp"
 
 namespace filmgrain {
@@ -46,7 +46,7 @@ FgcIntensityInterval interval(int lo, int hi, int value, int h, int v) {
 
 std::vector<FrameBuffer> synthesize_fgc(const FgcParams& p, const FrameBuffer& clean, int frames) {
     FgcOptions o;
-    FgcSynthesizer s(o);
+    FgcStreamSynthesis s(o);
     std::vector<FrameBuffer> out;
     for (int k = 0; k < frames; k++) {
         FrameBuffer g = clean;

@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "conformance_case.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"

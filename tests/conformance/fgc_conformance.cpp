@@ -1,6 +1,6 @@
 // FGC SEI frequency-filtering conformance through the library: every conformance/vtm_*
 // and rdd5_* case, decoder style (the SEI payload of each access unit parsed from
-// frameK.fgc.bin and handed to one FgcSynthesizer in output order), and again with the
+// frameK.fgc.bin and handed to one FgcStreamSynthesis in output order), and again with the
 // case.json parameters, which must describe the same SEI.
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "conformance_case.hpp"
 #include "core/md5.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "io/xz_file.hpp"
 #include "metadata/fgc_json.hpp"
 #include "metadata/fgc_sei.hpp"
@@ -42,8 +42,8 @@ void run(const std::string& name, Source source, FgcPersistence persistence,
     if (flavour_override) opt.flavour = *flavour_override;
     opt.passthrough_invalid = true;  // the references output the clean picture
     opt.persistence = persistence;
-    FgcSynthesizer synth(opt);
-    FgcSynthesizer synth_in_place(opt);  // the same stream, every picture synthesized in place
+    FgcStreamSynthesis synth(opt);
+    FgcStreamSynthesis synth_in_place(opt);  // the same stream, every picture synthesized in place
     int mismatches = 0;
     for (int k = 0; k < c.frames; k++) {
         const auto& fi = c.frame_info(k);

@@ -8,11 +8,11 @@
 #include <filesystem>
 
 #include "afgs1_case.hpp"
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "conformance_case.hpp"
 #include "core/md5.hpp"
 #include "core/simd_targets.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "io/xz_file.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "metadata/fgc_sei.hpp"
@@ -31,7 +31,7 @@ int run_fgc_case(const std::string& name) {
     opt.flavour = c.json.at("family") == "vtm" ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
     opt.passthrough_invalid = true;
     opt.threads = 2;
-    FgcSynthesizer synth(opt);
+    FgcStreamSynthesis synth(opt);
     int mismatches = 0;
     for (int k = 0; k < c.frames; k++) {
         const auto& fi = c.frame_info(k);
@@ -55,7 +55,7 @@ int run_fgc_case(const std::string& name) {
 int run_av1_case(const std::string& name) {
     const ConformanceCase c = load_case(name);
     const std::vector<Av1FrameParams> params = av1_frame_params_from_json(c.json);
-    av1::Av1Synthesizer synth(2);
+    av1::Av1PictureSynthesis synth(2);
     int mismatches = 0;
     for (int k = 0; k < c.frames; k++) {
         const int mc = c.frame_info(k).at("params").value("matrix_coefficients", 2);

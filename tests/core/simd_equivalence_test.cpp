@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "av1/block_synthesis.hpp"
 #include "av1/grain_blending.hpp"
 #include "av1/stripe_block_origins.hpp"
@@ -18,7 +18,8 @@
 #include "forced_simd_target.hpp"
 #include "fgc/blending.hpp"
 #include "fgc/deblocking.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
+#include "fgc/grain_scaling.hpp"
 #include "fgc/local_adaptation.hpp"
 #include "fgc/simd/fgc_kernels.hpp"
 #include "filmgrain/error.hpp"
@@ -96,10 +97,12 @@ TEST_P(SimdEquivalence, FgcScaleTemplateBlocks) {
             const int32_t scale = uniform(-(255 << (bd - 8)), 255 << (bd - 8));
             const int cols = uniform(0, 3) ? bs : uniform(1, bs);
             copies.push_back({tmpl.data() + oy * 64 + ox, got.data() + b * bs, scale, cols});
-            // the reference stripe's inner loop
-            for (int l = 0; l < bs; l++)
-                for (int k = 0; k < cols; k++)
-                    want[std::size_t(l) * stride + b * bs + k] = int16_t((scale * tmpl[(oy + l) * 64 + ox + k]) >> shift);
+            // the scaling stage the reference stripe runs
+            for (int l = 0; l < bs; l++) {
+                int32_t row[32];
+                fgc::scale_template_row(tmpl.data() + (oy + l) * 64 + ox, scale, shift, row, cols);
+                for (int k = 0; k < cols; k++) want[std::size_t(l) * stride + b * bs + k] = int16_t(row[k]);
+            }
         }
         fgc::simd::scale_template_blocks(copies.data(), count, bs, shift, stride);
         ASSERT_EQ(got, want) << "iteration " << iter << " bs " << bs << " bd " << bd;
@@ -490,7 +493,7 @@ TEST_P(SimdEquivalence, Av1CoSitedLumaRow) {
 
 TEST_P(SimdEquivalence, Av1WholeFrames) {
     const ChromaFormat formats[] = {ChromaFormat::k420, ChromaFormat::k422, ChromaFormat::k444, ChromaFormat::k400};
-    av1::Av1Synthesizer optimized(3, av1::Kernels::kOptimized);
+    av1::Av1PictureSynthesis optimized(3, av1::Kernels::kOptimized);
     for (int iter = 0; iter < 24; iter++) {
         const int bd = std::array<int, 3>{8, 10, 12}[std::size_t(uniform(0, 2))];
         const ChromaFormat cf = formats[uniform(0, 3)];
@@ -550,7 +553,7 @@ TEST_P(SimdEquivalence, FgcWholeFrames) {
         FgcOptions ref = o;
         ref.reference_kernels = true;
         ref.threads = 1;
-        FgcSynthesizer fast(o), slow(ref);
+        FgcStreamSynthesis fast(o), slow(ref);
         const FgcParams params = random_fgc_params(rng, bd);
         StridedFrame src(w, h, cf, bd, uniform(0, 17), uniform(0, 1), rng);
         StridedFrame want = src, got = src, in_place = src;
@@ -605,7 +608,7 @@ TEST_P(SimdEquivalence, FgcChangingSetsAndManyIntervals) {
         const int w = vtm ? 4 * uniform(32, 50) : uniform(17, 150), h = vtm ? 4 * uniform(32, 40) : uniform(9, 90);
         o.block_size = o.flavour == FgcFlavour::kVtm ? 8 << uniform(0, 2) : 0;
         o.threads = uniform(1, 2);
-        FgcSynthesizer fast(o);
+        FgcStreamSynthesis fast(o);
         FgcParams params;
         for (int frame = 0; frame < 6; frame++) {
             // a new set, then the same set with one value changed (the tables must notice), ...
@@ -622,7 +625,7 @@ TEST_P(SimdEquivalence, FgcChangingSetsAndManyIntervals) {
             FgcOptions ref = o;
             ref.reference_kernels = true;
             ref.threads = 1;
-            FgcSynthesizer slow(ref);
+            FgcStreamSynthesis slow(ref);
             StridedFrame src(w, h, ChromaFormat::k420, bd, uniform(0, 9), false, rng);
             StridedFrame want = src, got = src;
             const FgcPictureIds ids{frame, 0};

@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <new>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -57,7 +57,7 @@ TEST(SteadyStateMemory, FgcFramesAfterTheFirstAllocateNothing) {
                 FgcOptions o;
                 o.flavour = flavour;
                 o.threads = threads;
-                FgcSynthesizer s(o);
+                FgcStreamSynthesis s(o);
                 FrameBuffer in = ramp(1280, 720, bd), out(1280, 720, in.format());
                 const FgcParams params = fgc_params();
                 for (int k = 0; k < 2; k++) {  // warm-up: templates, stripe buffers
@@ -96,7 +96,7 @@ TEST(SteadyStateMemory, Av1FramesAfterTheFirstAllocateNothing) {
     for (int threads : {1, 2})
         for (int bd : {8, 10})
             for (auto kernels : {av1::Kernels::kOptimized}) {
-                av1::Av1Synthesizer s(threads, kernels);
+                av1::Av1PictureSynthesis s(threads, kernels);
                 FrameBuffer in = ramp(1280, 720, bd), out(1280, 720, in.format());
                 for (int k = 0; k < 2; k++) {
                     p.grain_seed = 100 + k;

@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/thread_pool.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 
 using namespace filmgrain;
 
@@ -85,7 +85,7 @@ TEST(StripeThreads, FgcOutputIsTheSameForEveryThreadCount) {
                     o.flavour = flavour;
                     o.threads = threads;
                     o.reference_kernels = reference;
-                    FgcSynthesizer s(o);
+                    FgcStreamSynthesis s(o);
                     s.receive_sei(fgc_params(bd));
                     FrameBuffer in = src, out(src.width(), src.height(), fmt);
                     s.apply(in.view(), out.view(), FgcPictureIds{3, 1});
@@ -122,7 +122,7 @@ TEST(StripeThreads, Av1OutputIsTheSameForEveryThreadCount) {
             const FrameBuffer src = noise_frame(1000, 530, fmt, 9);
             std::vector<uint8_t> first;
             for (int threads : {1, 2, 3, 5}) {
-                av1::Av1Synthesizer s(threads, kernels);
+                av1::Av1PictureSynthesis s(threads, kernels);
                 FrameBuffer in = src, out(src.width(), src.height(), fmt);
                 s.apply(p, in.view(), out.view(), 1);
                 std::vector<uint8_t> bytes(out.bytes(), out.bytes() + out.byte_size());

@@ -25,7 +25,7 @@
 
 #include <unistd.h>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "conformance_case.hpp"
 #include "core/frame_buffer.hpp"
 #include "io/video_file.hpp"

@@ -11,7 +11,7 @@
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
 #include "fgc/deblocking.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "fgc/local_adaptation.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/error.hpp"
@@ -143,7 +143,7 @@ TEST(FgcFfmpegFlavour, EqualsRdd5WhereNoDepartureApplies) {
         FgcOptions o;
         o.flavour = f;
         o.threads = 2;
-        FgcSynthesizer s(o);
+        FgcStreamSynthesis s(o);
         s.receive_sei(p);
         FrameBuffer dst(96, 64, src.format());
         s.apply(src.view(), dst.view(), FgcPictureIds{5, 0});
@@ -156,7 +156,7 @@ TEST(FgcFfmpegFlavour, BlockSizeOtherThanEightIsRefused) {
     FgcOptions o;
     o.flavour = FgcFlavour::kFfmpeg;
     o.block_size = 16;
-    const std::string e = error_of([&] { FgcSynthesizer s(o); });
+    const std::string e = error_of([&] { FgcStreamSynthesis s(o); });
     EXPECT_NE(e.find("block_size = 16"), std::string::npos) << e;
 }
 

@@ -10,6 +10,7 @@
 #include "fgc/blending.hpp"
 #include "fgc/block_randomization.hpp"
 #include "fgc/deblocking.hpp"
+#include "fgc/grain_scaling.hpp"
 #include "fgc/fgc_tables.hpp"
 #include "fgc/local_adaptation.hpp"
 #include "fgc/pseudo_random.hpp"
@@ -91,6 +92,25 @@ TEST(FgcTemplates, PredeblockScalesBlockEdgeRows) {
     EXPECT_EQ(n[16][0], int8_t((-100 * 71) >> 7));
     EXPECT_EQ(n[15][0], int8_t((-100 * 71) >> 7));
     EXPECT_EQ(n[8][0], -100);
+}
+
+TEST(FgcScaling, ScaleSignAndShiftFloorLikeTheReference) {
+    // (sign * scale * t) >> shift with an arithmetic shift: negative products round towards
+    // minus infinity, so -127 * 255 >> 8 is -127 (not -126), +127 * 255 >> 8 is 126.
+    const int8_t t[6] = {127, -127, 1, -1, 0, 64};
+    int32_t g[6];
+    scale_template_row(t, 255, 8, g, 6);
+    EXPECT_EQ(std::vector<int32_t>(g, g + 6), (std::vector<int32_t>{126, -127, 0, -1, 0, 63}));
+    scale_template_row(t, -255, 8, g, 6);  // a negative block
+    EXPECT_EQ(std::vector<int32_t>(g, g + 6), (std::vector<int32_t>{-127, 126, -1, 0, 0, -64}));
+    // 10-bit scale 1020 (= 255 << 2) with log2_scale_factor 2: shift 8, grain up to 506
+    scale_template_row(t, 1020, 8, g, 2);
+    EXPECT_EQ(g[0], 506);
+    EXPECT_EQ(g[1], -507);
+    // count: nothing past it is written
+    g[3] = 12345;
+    scale_template_row(t, 255, 8, g, 3);
+    EXPECT_EQ(g[3], 12345);
 }
 
 TEST(FgcTemplates, CacheBuildsOnlyWhatIsAsked) {

@@ -15,8 +15,8 @@
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
 #include "fgc/ar_template_generation.hpp"
-#include "fgc/fgc_synthesis.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_picture_synthesis.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "fgc/vfgs/vfgs_templates.hpp"
 #include "filmgrain/error.hpp"
 
@@ -73,7 +73,7 @@ FrameBuffer flat(int w, int h, PixelFormat f, int value) {
 }
 
 FrameBuffer synthesize(const FgcOptions& o, const FgcParams& p, const FrameBuffer& in, int poc = 0) {
-    FgcSynthesizer s(o);
+    FgcStreamSynthesis s(o);
     s.receive_sei(p);
     FrameBuffer out(in.width(), in.height(), in.format());
     s.apply(const_cast<FrameBuffer&>(in).view(), out.view(), {poc, 0});
@@ -153,8 +153,8 @@ TEST(FgcTr, ReferenceStripeEqualsTheOptimizedOneForEveryFlavourItServes) {
             const FgcParams p = ff_params(300);
             fgc::ResolvedFgc r = fgc::resolve_fgc_params(p, flavour, {f.chroma, 10, 260, 140});
             FrameBuffer a(260, 140, f), b(260, 140, f);
-            fgc::FgcFrameSynthesis(flavour, bs, 1, fgc::Kernels::kOptimized).apply(r, in.view(), a.view(), 9);
-            fgc::FgcFrameSynthesis(flavour, bs, 2, fgc::Kernels::kReference).apply(r, in.view(), b.view(), 9);
+            fgc::FgcPictureSynthesis(flavour, bs, 1, fgc::Kernels::kOptimized).apply(r, in.view(), a.view(), 9);
+            fgc::FgcPictureSynthesis(flavour, bs, 2, fgc::Kernels::kReference).apply(r, in.view(), b.view(), 9);
             EXPECT_EQ(std::memcmp(a.bytes(), b.bytes(), a.byte_size()), 0)
                 << fgc_flavour_name(flavour) << " block " << bs;
         }
@@ -175,9 +175,9 @@ TEST(FgcTr, ModelOneAndSingleLineOutputsDoNotDependOnTheThreadCount) {
         const fgc::ResolvedFgc r = fgc::resolve_fgc_params(p, FgcFlavour::kTr, {f.chroma, 8, 198, 133});
         const int bs = single_line ? single_line : 8;
         FrameBuffer a(198, 133, f), b(198, 133, f);
-        fgc::FgcFrameSynthesis(FgcFlavour::kTr, bs, 1, fgc::Kernels::kOptimized, single_line)
+        fgc::FgcPictureSynthesis(FgcFlavour::kTr, bs, 1, fgc::Kernels::kOptimized, single_line)
             .apply(r, in.view(), a.view(), 4);
-        fgc::FgcFrameSynthesis(FgcFlavour::kTr, bs, 3, fgc::Kernels::kOptimized, single_line)
+        fgc::FgcPictureSynthesis(FgcFlavour::kTr, bs, 3, fgc::Kernels::kOptimized, single_line)
             .apply(r, in.view(), b.view(), 4);
         EXPECT_EQ(std::memcmp(a.bytes(), b.bytes(), a.byte_size()), 0) << "single-line " << single_line;
         EXPECT_NE(std::memcmp(a.bytes(), in.bytes(), a.byte_size()), 0) << "grain was added";
@@ -511,7 +511,7 @@ TEST(FgcSingleLine, OneTemplatePerPicture) {
     FgcOptions o;
     o.flavour = FgcFlavour::kVtm;
     o.single_line_blocks = 16;
-    FgcSynthesizer s(o);
+    FgcStreamSynthesis s(o);
     s.receive_sei(a);
     EXPECT_EQ(md5_hex(synthesize(o, a, in).bytes(), in.byte_size()), md5_hex(synthesize(o, b, in).bytes(), in.byte_size()));
     o.single_line_blocks = 0;
@@ -522,7 +522,7 @@ TEST(FgcSingleLine, OneTemplatePerPicture) {
 TEST(FgcSingleLine, OptionChecks) {
     auto code = [](FgcOptions o) {
         try {
-            FgcSynthesizer s(o);
+            FgcStreamSynthesis s(o);
         } catch (const Error& e) {
             return e.code();
         }

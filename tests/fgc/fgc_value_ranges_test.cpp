@@ -12,7 +12,7 @@
 
 #include "core/frame_buffer.hpp"
 #include "fgc/block_randomization.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/error.hpp"
 #include "filmgrain/vfgs.hpp"
@@ -77,7 +77,7 @@ void apply(FgcFlavour flavour, const FgcParams& p, int bit_depth, ChromaFormat f
     }
     FgcOptions o;
     o.flavour = flavour;
-    FgcSynthesizer s(o);
+    FgcStreamSynthesis s(o);
     s.receive_sei(p);
     s.apply(in.view(), out.view(), {0, 0});
 }
@@ -239,7 +239,7 @@ TEST(FgcSeed, AnyInt32PictureIdsWrapAsTheReferenceSeedDoes) {
         FgcOptions o;
         o.flavour = fl;
         auto run = [&](int poc, int idr) {
-            FgcSynthesizer s(o);
+            FgcStreamSynthesis s(o);
             s.receive_sei(ff_params(100));
             FrameBuffer in = grey(8), out = grey(8);
             s.apply(in.view(), out.view(), {poc, idr});

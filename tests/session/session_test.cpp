@@ -7,10 +7,10 @@
 #include <string>
 
 #include "core/frame_buffer.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "filmgrain/session.hpp"
 #include "filmgrain/vfgs.hpp"
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 
 using namespace filmgrain;
 
@@ -79,8 +79,8 @@ std::vector<uint8_t> through_session(const SessionOptions& so, const FrameBuffer
     return all;
 }
 
-std::vector<uint8_t> through_fgc_synthesizer(const FgcOptions& fo, const FrameBuffer& in) {
-    FgcSynthesizer s(fo);
+std::vector<uint8_t> through_fgc_stream_synthesis(const FgcOptions& fo, const FrameBuffer& in) {
+    FgcStreamSynthesis s(fo);
     s.receive_sei(fgc_params());
     std::vector<uint8_t> all;
     for (int k = 0; k < 3; k++) {
@@ -120,13 +120,13 @@ TEST(Session, FgcOptionsGiveWhatTheSynthesizerGivesWithThem) {
         fo.flavour = c.flavour;
         fo.block_size = c.block_size;
         fo.single_line_blocks = c.single_line_blocks;
-        const std::vector<uint8_t> a = through_session(so, in), b = through_fgc_synthesizer(fo, in);
+        const std::vector<uint8_t> a = through_session(so, in), b = through_fgc_stream_synthesis(fo, in);
         EXPECT_EQ(a, b) << int(c.flavour) << " block " << c.block_size << " single-line " << c.single_line_blocks;
         // and the option does something: square default blocks differ
         if (c.block_size || c.single_line_blocks) {
             FgcOptions plain;
             plain.flavour = c.flavour;
-            EXPECT_NE(a, through_fgc_synthesizer(plain, in));
+            EXPECT_NE(a, through_fgc_stream_synthesis(plain, in));
         }
     }
 }

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "core/float_plane.hpp"
 #include "core/frame_buffer.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "filmgrain/error.hpp"
 #include "filmgrain/vfgs.hpp"
 #include "stats/grain_statistics.hpp"
@@ -107,7 +107,7 @@ TEST(StandardModelExtremes, SaturatingScalingClipsToTheRange) {
     }
     // FGC with the largest scale at both ends of the range: clipped, never wrapped.
     for (int level : {0, 255}) {
-        FgcSynthesizer s(FgcOptions{});
+        FgcStreamSynthesis s(FgcOptions{});
         s.receive_sei(fgc_base(255, 14));
         FrameBuffer src = flat(64, 64, 8, level), dst = src;
         s.apply(src.view(), dst.view(), FgcPictureIds{0, 0});
@@ -127,7 +127,7 @@ TEST(StandardModelExtremes, Fgc16BitScalesTheGrainWithTheBitDepth) {
     int i = 0;
     for (int bd : {8, 16}) {
         FgcOptions o;
-        FgcSynthesizer s(o);
+        FgcStreamSynthesis s(o);
         FgcParams p = fgc_base(100, 8);
         s.receive_sei(p);
         FrameBuffer src = flat(128, 128, bd, 128 << (bd - 8)), dst = src;
@@ -142,7 +142,7 @@ TEST(StandardModelExtremes, Fgc16BitScalesTheGrainWithTheBitDepth) {
 
 TEST(StandardModelExtremes, SinglePixelPictures) {
     {
-        FgcSynthesizer s(FgcOptions{});
+        FgcStreamSynthesis s(FgcOptions{});
         s.receive_sei(fgc_base(255, 8));
         FrameBuffer src = flat(1, 1, 8, 128), dst = src;
         s.apply(src.view(), dst.view(), FgcPictureIds{0, 0});
@@ -150,7 +150,7 @@ TEST(StandardModelExtremes, SinglePixelPictures) {
         // The lone sample gets the grain the top-left sample of a larger flat picture gets: the
         // same block offsets and seed, an 8x8 average of the same grey, no deblocking at the
         // picture's edge.
-        FgcSynthesizer big(FgcOptions{});
+        FgcStreamSynthesis big(FgcOptions{});
         big.receive_sei(fgc_base(255, 8));
         FrameBuffer src_big = flat(32, 32, 8, 128), dst_big = src_big;
         big.apply(src_big.view(), dst_big.view(), FgcPictureIds{0, 0});
@@ -163,7 +163,7 @@ TEST(StandardModelExtremes, SinglePixelPictures) {
         // The vtm flavour follows HM's picture-size limits: a clear error naming them.
         FgcOptions o;
         o.flavour = FgcFlavour::kVtm;
-        FgcSynthesizer t(o);
+        FgcStreamSynthesis t(o);
         t.receive_sei(fgc_base(255, 8));
         EXPECT_THROW(t.apply(src.view(), dst.view(), FgcPictureIds{0, 0}), Error);
     }
@@ -203,7 +203,7 @@ TEST(StandardModelExtremes, PartialBlocksCarryGrainLikeFullOnes) {
     for (FgcFlavour f : {FgcFlavour::kRdd5, FgcFlavour::kVtm}) {
         FgcOptions o;
         o.flavour = f;
-        FgcSynthesizer s(o);
+        FgcStreamSynthesis s(o);
         s.receive_sei(fgc_base(150, 10));
         const int w = f == FgcFlavour::kRdd5 ? 75 : 180, h = f == FgcFlavour::kRdd5 ? 45 : 132;
         FrameBuffer src = flat(w, h, 8, 128), dst = src;

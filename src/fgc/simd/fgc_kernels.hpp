@@ -13,7 +13,7 @@ namespace filmgrain::fgc::simd {
 
 // One block of the stripe: `rows` template rows starting at `tmpl` (row pitch 64), scaled
 // by `scale` (sign included) and shifted right, written to `cols` columns at `dst`.
-// Twin of the inner copy loop of the reference stripe in fgc_synthesis.cpp.
+// Twin of the inner copy loop of the reference stripe in fgc_picture_synthesis.cpp.
 struct BlockCopy {
     const int8_t* tmpl;
     int16_t* dst;

@@ -13,6 +13,7 @@
 #include "av1/grain_template_generation.hpp"
 #include "av1/scaling_lookup.hpp"
 #include "filmgrain/av1_params.hpp"
+#include "core/kernels.hpp"
 #include "filmgrain/frame.hpp"
 
 namespace filmgrain {
@@ -21,10 +22,8 @@ class ThreadPool;
 
 namespace filmgrain::av1 {
 
-// Which implementation of the per-stripe stages runs: the scalar reference (the spec's
-// process, kept as the bit-exact reference) or the optimized one (vector kernels chosen at
-// run time for the CPU, allocation-free stripe buffers). Both give identical output.
-enum class Kernels { kOptimized, kReference };
+// The optimized stripes also keep allocation-free stripe buffers (Av1StripeScratch).
+using ::filmgrain::Kernels;
 
 // A stripe worker's memory, reused across stripes and frames: the two noise rows a stripe
 // shares with the one above (and at 12 bits the two rows they fade from), per block its
@@ -131,12 +130,12 @@ void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const F
 // 0 = every hardware thread) and per-thread stripe scratch, so that frames after the first
 // are synthesized without growing memory. The output does not depend on the thread count
 // or on `kernels`. One instance per stream; instances share nothing.
-class Av1Synthesizer {
+class Av1PictureSynthesis {
 public:
-    explicit Av1Synthesizer(int threads = 0, Kernels kernels = Kernels::kOptimized);
-    ~Av1Synthesizer();
-    Av1Synthesizer(const Av1Synthesizer&) = delete;
-    Av1Synthesizer& operator=(const Av1Synthesizer&) = delete;
+    explicit Av1PictureSynthesis(int threads = 0, Kernels kernels = Kernels::kOptimized);
+    ~Av1PictureSynthesis();
+    Av1PictureSynthesis(const Av1PictureSynthesis&) = delete;
+    Av1PictureSynthesis& operator=(const Av1PictureSynthesis&) = delete;
 
     void apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst, int matrix_coefficients);
     int threads() const;

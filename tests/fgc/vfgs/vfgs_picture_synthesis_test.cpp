@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "core/frame_buffer.hpp"
-#include "fgc/vfgs/vfgs_synthesis.hpp"
+#include "fgc/vfgs/vfgs_picture_synthesis.hpp"
 #include "filmgrain/error.hpp"
 #include "filmgrain/vfgs.hpp"
 

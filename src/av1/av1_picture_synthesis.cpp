@@ -1,5 +1,5 @@
 // AV1 spec 7.18.3 (film grain synthesis process), stripe-driven.
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 
 
 #include <algorithm>
@@ -362,14 +362,14 @@ void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const F
     ctx.apply_stripes(src, dst, 0, ctx.stripe_count());
 }
 
-Av1Synthesizer::Av1Synthesizer(int threads, Kernels kernels)
+Av1PictureSynthesis::Av1PictureSynthesis(int threads, Kernels kernels)
     : kernels_(kernels), pool_(std::make_unique<ThreadPool>(threads)), scratch_(std::size_t(pool_->size())) {}
 
-Av1Synthesizer::~Av1Synthesizer() = default;
+Av1PictureSynthesis::~Av1PictureSynthesis() = default;
 
-int Av1Synthesizer::threads() const { return pool_->size(); }
+int Av1PictureSynthesis::threads() const { return pool_->size(); }
 
-std::size_t Av1Synthesizer::working_bytes() const {
+std::size_t Av1PictureSynthesis::working_bytes() const {
     std::size_t n = 0;
     for (const auto& s : scratch_) n += s.bytes();
     if (context_) n += context_->table_bytes();
@@ -384,7 +384,7 @@ std::size_t Av1SynthesisContext::table_bytes() const {
     return n;
 }
 
-void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
+void Av1PictureSynthesis::apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
                            int matrix_coefficients) {
     check_frame_pair(src, dst);
     if (!context_)
@@ -404,7 +404,7 @@ void Av1Synthesizer::apply(const Av1FilmGrainParams& p, const FrameView& src, co
 
 void apply_film_grain(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,
                       int matrix_coefficients, int threads) {
-    Av1Synthesizer synth(threads);
+    Av1PictureSynthesis synth(threads);
     synth.apply(p, src, dst, matrix_coefficients);
 }
 

@@ -9,7 +9,7 @@
 
 #include "core/frame_buffer.hpp"
 #include "core/md5.hpp"
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 #include "filmgrain/error.hpp"
 
 using namespace filmgrain;
@@ -61,7 +61,7 @@ double plane_sd(const FrameBuffer& a, const FrameBuffer& b, int plane) {
 // library cannot afford to scan for: the block averages that pick an intensity interval must
 // still never index past their tables (the sanitizer build checks), and the output must stay
 // within the range.
-TEST(FgcSynthesizer, SamplesAboveTheBitDepthStayInBounds) {
+TEST(FgcStreamSynthesis, SamplesAboveTheBitDepthStayInBounds) {
     for (int bd : {10, 12})
         for (FgcFlavour flavour : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kTr, FgcFlavour::kFfmpeg})
             for (bool reference : {true, false}) {
@@ -74,7 +74,7 @@ TEST(FgcSynthesizer, SamplesAboveTheBitDepthStayInBounds) {
                 o.flavour = flavour;
                 o.threads = 1;
                 o.reference_kernels = reference;
-                FgcSynthesizer s(o);
+                FgcStreamSynthesis s(o);
                 FgcParams p = params();
                 p.comp[0].intervals = {{0, 99, {80, 8, 8}}, {100, 255, {120, 10, 10}}};
                 s.receive_sei(p);
@@ -84,13 +84,13 @@ TEST(FgcSynthesizer, SamplesAboveTheBitDepthStayInBounds) {
             }
 }
 
-TEST(FgcSynthesizer, PersistenceReferenceVersusSemantic) {
+TEST(FgcStreamSynthesis, PersistenceReferenceVersusSemantic) {
     const PixelFormat f{ChromaFormat::k420, 8};
     FrameBuffer in = flat(176, 144, f, 128), out(176, 144, f);
     for (auto mode : {FgcPersistence::kReference, FgcPersistence::kSemantic}) {
         FgcOptions o;
         o.persistence = mode;
-        FgcSynthesizer s(o);
+        FgcStreamSynthesis s(o);
         s.receive_sei(params(80, /*persist=*/false));
         EXPECT_TRUE(s.apply(in.view(), out.view(), {0, 0}).grain_applied);
         EXPECT_NE(md5(out), md5(in));
@@ -100,10 +100,10 @@ TEST(FgcSynthesizer, PersistenceReferenceVersusSemantic) {
     }
 }
 
-TEST(FgcSynthesizer, CancelStopsGrainAndPersists) {
+TEST(FgcStreamSynthesis, CancelStopsGrainAndPersists) {
     const PixelFormat f{ChromaFormat::k420, 8};
     FrameBuffer in = flat(176, 144, f, 100), out(176, 144, f);
-    FgcSynthesizer s(FgcOptions{});
+    FgcStreamSynthesis s(FgcOptions{});
     s.receive_sei(params());
     s.apply(in.view(), out.view(), {0, 0});
     EXPECT_NE(md5(out), md5(in));
@@ -116,12 +116,12 @@ TEST(FgcSynthesizer, CancelStopsGrainAndPersists) {
     EXPECT_EQ(md5(out), md5(in));
 }
 
-TEST(FgcSynthesizer, InvalidSetThrowsOrPassesThrough) {
+TEST(FgcStreamSynthesis, InvalidSetThrowsOrPassesThrough) {
     const PixelFormat f{ChromaFormat::k420, 8};
     FrameBuffer in = flat(176, 144, f, 100), out(176, 144, f);
     FgcParams bad = params();
     bad.log2_scale_factor = 1;
-    FgcSynthesizer strict(FgcOptions{});
+    FgcStreamSynthesis strict(FgcOptions{});
     strict.receive_sei(bad);
     try {
         strict.apply(in.view(), out.view(), {0, 0});
@@ -132,7 +132,7 @@ TEST(FgcSynthesizer, InvalidSetThrowsOrPassesThrough) {
     }
     FgcOptions o;
     o.passthrough_invalid = true;
-    FgcSynthesizer lenient(o);
+    FgcStreamSynthesis lenient(o);
     lenient.receive_sei(bad);
     const auto r = lenient.apply(in.view(), out.view(), {0, 0});
     EXPECT_FALSE(r.grain_applied);
@@ -140,7 +140,7 @@ TEST(FgcSynthesizer, InvalidSetThrowsOrPassesThrough) {
     EXPECT_EQ(md5(out), md5(in));
 }
 
-TEST(FgcSynthesizer, InPlaceNegativeStrideAndSeparateOutputAgree) {
+TEST(FgcStreamSynthesis, InPlaceNegativeStrideAndSeparateOutputAgree) {
     for (auto flavour : {FgcFlavour::kRdd5, FgcFlavour::kVtm}) {
         const PixelFormat f{ChromaFormat::k420, 10};
         FrameBuffer in(352, 288, f);
@@ -149,7 +149,7 @@ TEST(FgcSynthesizer, InPlaceNegativeStrideAndSeparateOutputAgree) {
         for (std::size_t i = 0; i < in.byte_size() / 2; i++) s[i] = uint16_t(rng() % 1024);
         FgcOptions o;
         o.flavour = flavour;
-        FgcSynthesizer a(o), b(o), c(o);
+        FgcStreamSynthesis a(o), b(o), c(o);
         FrameBuffer out(352, 288, f), inplace = in;
         a.receive_sei(params(300));
         a.apply(in.view(), out.view(), {3, 0});
@@ -176,7 +176,7 @@ TEST(FgcSynthesizer, InPlaceNegativeStrideAndSeparateOutputAgree) {
             for (int y = 0; y < fi.planes[p].height; y++)
                 std::memcpy(fi.planes[p].row<uint8_t>(y), src.planes[p].row<uint8_t>(fi.planes[p].height - 1 - y),
                             fi.planes[p].width * 2);
-        FgcSynthesizer d(o);
+        FgcStreamSynthesis d(o);
         d.receive_sei(params(300));
         d.apply(flipped_in.view(), expect.view(), {3, 0});
         FrameBuffer unflipped(352, 288, f);
@@ -189,14 +189,14 @@ TEST(FgcSynthesizer, InPlaceNegativeStrideAndSeparateOutputAgree) {
     }
 }
 
-TEST(FgcSynthesizer, Chroma444UsesUnconvertedParameters) {
+TEST(FgcStreamSynthesis, Chroma444UsesUnconvertedParameters) {
     // HM crashes on 4:4:4; by the semantics chroma is at luma resolution, so it takes the
     // signalled scale and cut-offs unchanged and gets grain as strong as luma's.
     const PixelFormat f{ChromaFormat::k444, 8};
     FrameBuffer in = flat(352, 288, f, 128), out(352, 288, f);
     FgcOptions o;
     o.flavour = FgcFlavour::kVtm;
-    FgcSynthesizer s(o);
+    FgcStreamSynthesis s(o);
     s.receive_sei(params(120));
     s.apply(in.view(), out.view(), {0, 0});
     const double y = plane_sd(in, out, 0), u = plane_sd(in, out, 1);
@@ -204,12 +204,12 @@ TEST(FgcSynthesizer, Chroma444UsesUnconvertedParameters) {
     EXPECT_NEAR(u / y, 1.0, 0.25);
 }
 
-TEST(FgcSynthesizer, SixteenBitAndOddSizesStayInRange) {
+TEST(FgcStreamSynthesis, SixteenBitAndOddSizesStayInRange) {
     for (int bd : {8, 9, 12, 16})
         for (auto [w, h] : {std::pair{97, 61}, std::pair{1, 1}, std::pair{17, 130}}) {
             const PixelFormat f{ChromaFormat::k420, bd};
             FrameBuffer in = flat(w, h, f, 250), out(w, h, f);
-            FgcSynthesizer s(FgcOptions{});
+            FgcStreamSynthesis s(FgcOptions{});
             FgcParams p = params(255 << (bd - 8));
             p.log2_scale_factor = 2;
             s.receive_sei(p);
@@ -221,11 +221,11 @@ TEST(FgcSynthesizer, SixteenBitAndOddSizesStayInRange) {
         }
 }
 
-TEST(FgcSynthesizer, ContextsAreIndependentAcrossThreads) {
+TEST(FgcStreamSynthesis, ContextsAreIndependentAcrossThreads) {
     const PixelFormat f{ChromaFormat::k420, 8};
     FrameBuffer in = flat(352, 288, f, 90);
     auto run = [&](int poc) {
-        FgcSynthesizer s(FgcOptions{});
+        FgcStreamSynthesis s(FgcOptions{});
         s.receive_sei(params());
         FrameBuffer out(352, 288, f);
         s.apply(in.view(), out.view(), {poc, 0});
@@ -240,9 +240,9 @@ TEST(FgcSynthesizer, ContextsAreIndependentAcrossThreads) {
     EXPECT_NE(serial[0], serial[1]) << "the POC changes the seed";
 }
 
-TEST(FgcSynthesizer, MismatchedFramesAreRejected) {
+TEST(FgcStreamSynthesis, MismatchedFramesAreRejected) {
     FrameBuffer a(64, 64, {ChromaFormat::k420, 8}), b(64, 32, {ChromaFormat::k420, 8});
-    FgcSynthesizer s(FgcOptions{});
+    FgcStreamSynthesis s(FgcOptions{});
     s.receive_sei(params());
     EXPECT_THROW(s.apply(a.view(), b.view(), {0, 0}), Error);
 }

@@ -1,5 +1,5 @@
-// Per-sample grain synthesis and blending of the VFGS flavour: see vfgs_synthesis.hpp.
-#include "fgc/vfgs/vfgs_synthesis.hpp"
+// Per-sample grain synthesis and blending of the VFGS flavour: see vfgs_picture_synthesis.hpp.
+#include "fgc/vfgs/vfgs_picture_synthesis.hpp"
 
 #include <algorithm>
 

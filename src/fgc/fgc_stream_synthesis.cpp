@@ -1,4 +1,4 @@
-#include "fgc/fgc_synthesizer.hpp"
+#include "fgc/fgc_stream_synthesis.hpp"
 
 #include "core/frame_buffer.hpp"
 #include "core/plane_layout.hpp"
@@ -6,7 +6,7 @@
 
 namespace filmgrain {
 
-struct FgcSynthesizer::Active {
+struct FgcStreamSynthesis::Active {
     FgcParams params;
     FgcCodec codec = FgcCodec::kHevc;
     // resolution cache, valid for one picture format
@@ -17,9 +17,9 @@ struct FgcSynthesizer::Active {
     bool have_format = false;
 };
 
-FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
+FgcStreamSynthesis::FgcStreamSynthesis(const FgcOptions& options) : options_(options) {
     if (options.flavour == FgcFlavour::kVfgs)
-        throw Error(ErrorCode::kInvalidArgument, "FgcSynthesizer handles the rdd5, ffmpeg, vtm and tr flavours; vfgs has its own");
+        throw Error(ErrorCode::kInvalidArgument, "FgcStreamSynthesis handles the rdd5, ffmpeg, vtm and tr flavours; vfgs has its own");
     if (options.block_size != 0 && options.block_size != 8 && options.block_size != 16 && options.block_size != 32)
         throw Error(ErrorCode::kInvalidArgument, "block_size = " + std::to_string(options.block_size) +
                                                      " is not allowed (allowed 0 = flavour default, 8, 16, 32)");
@@ -39,26 +39,26 @@ FgcSynthesizer::FgcSynthesizer(const FgcOptions& options) : options_(options) {
                                                      std::to_string(n) + ", not " + std::to_string(options.block_size));
 }
 
-FgcSynthesizer::~FgcSynthesizer() = default;
+FgcStreamSynthesis::~FgcStreamSynthesis() = default;
 
-void FgcSynthesizer::receive_sei(const FgcParams& params, FgcCodec codec) {
+void FgcStreamSynthesis::receive_sei(const FgcParams& params, FgcCodec codec) {
     pending_ = params;  // copy-assignment into kept storage: no allocation for a repeated SEI
     has_pending_ = true;
     pending_codec_ = codec;
 }
 
-void FgcSynthesizer::reset() {
+void FgcStreamSynthesis::reset() {
     has_pending_ = false;
     active_.reset();
 }
 
-int FgcSynthesizer::templates_built() const {
+int FgcStreamSynthesis::templates_built() const {
     return synthesis_ ? synthesis_->templates_built() : 0;
 }
 
-std::size_t FgcSynthesizer::scratch_bytes() const { return synthesis_ ? synthesis_->scratch_bytes() : 0; }
+std::size_t FgcStreamSynthesis::scratch_bytes() const { return synthesis_ ? synthesis_->scratch_bytes() : 0; }
 
-std::size_t FgcSynthesizer::working_bytes() const {
+std::size_t FgcStreamSynthesis::working_bytes() const {
     if (!synthesis_) return 0;
     return synthesis_->scratch_bytes() + synthesis_->scaled_template_bytes() +
            std::size_t(synthesis_->templates_built()) * sizeof(fgc::GrainTemplate);
@@ -126,7 +126,7 @@ void check_frame(const FrameView& src, const FrameView& dst) {
 }
 }  // namespace
 
-FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids) {
+FgcFrameResult FgcStreamSynthesis::apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids) {
     check_frame(src, dst);
     FgcFrameResult result;
     if (has_pending_ && active_ && active_->codec == pending_codec_ && same_sei(active_->params, pending_)) {
@@ -184,7 +184,7 @@ FgcFrameResult FgcSynthesizer::apply(const FrameView& src, const FrameView& dst,
     if (options_.flavour != FgcFlavour::kVtm) offset += uint32_t(ids.idr_pic_id) << 5;
     const int32_t pic_offset = int32_t(offset);
     if (!synthesis_ || synthesis_->block_size() != bs)
-        synthesis_ = std::make_unique<fgc::FgcFrameSynthesis>(
+        synthesis_ = std::make_unique<fgc::FgcPictureSynthesis>(
             options_.flavour, bs, options_.threads,
             options_.reference_kernels ? fgc::Kernels::kReference : fgc::Kernels::kOptimized,
             options_.single_line_blocks);

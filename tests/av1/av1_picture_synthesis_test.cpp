@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "av1/av1_synthesis.hpp"
+#include "av1/av1_picture_synthesis.hpp"
 #include "av1/block_synthesis.hpp"
 #include "av1/params_validation.hpp"
 #include "core/frame_buffer.hpp"
@@ -254,7 +254,7 @@ TEST(Av1Synthesis, SamplesAboveTheBitDepthStayInBounds) {
             std::mt19937 rng(5);
             for (std::size_t i = 0; i < src.byte_size() / 2; ++i)
                 in[i] = uint16_t(i % 3 == 0 ? 0xFFFF : (1 << bd) + rng() % 60000);
-            Av1Synthesizer s(1, k);
+            Av1PictureSynthesis s(1, k);
             s.apply(p, src.view(), dst.view(), 1);
             const auto* out = reinterpret_cast<const uint16_t*>(dst.bytes());
             for (std::size_t i = 0; i < dst.byte_size() / 2; ++i) ASSERT_LT(out[i], 1 << bd) << "sample " << i;

@@ -7,7 +7,7 @@
 #include "core/plane_layout.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
-#include "fgc/vfgs/vfgs_synthesis.hpp"
+#include "fgc/vfgs/vfgs_picture_synthesis.hpp"
 #include "fgc/vfgs/vfgs_templates.hpp"
 #include "filmgrain/error.hpp"
 #include "filmgrain/vfgs.hpp"

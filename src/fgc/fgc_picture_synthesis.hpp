@@ -31,6 +31,7 @@
 #include "fgc/scaled_templates.hpp"
 #include "fgc/simd/fgc_kernels.hpp"
 #include "fgc/template_generation.hpp"
+#include "core/kernels.hpp"
 #include "filmgrain/frame.hpp"
 
 namespace filmgrain {
@@ -39,25 +40,22 @@ class ThreadPool;
 
 namespace filmgrain::fgc {
 
-// Which implementation of the per-stripe stages runs: the scalar reference stages
-// (local_adaptation, deblocking, blending: the bit-exact references) or their optimized
-// twins (fgc/simd, vector kernels chosen at run time). Both give identical output.
-enum class Kernels { kOptimized, kReference };
+using ::filmgrain::Kernels;
 
 // The block size used for local adaptation and deblocking: RDD 5 always 8; HM/VTM 8 up to
 // 1920x1080 luma samples of the coded picture, 16 up to 3840x2160, 32 above (deriveFGSBlkSize).
 int default_block_size(FgcFlavour flavour, int luma_width, int luma_height);
 
-class FgcFrameSynthesis {
+class FgcPictureSynthesis {
 public:
     // flavour: rdd5, ffmpeg, vtm or tr (vtm: VVC DCT-2 templates and edge-replicated
     // averages over whole blocks; the others: the RDD 5 matrix and averages of the samples
     // inside the picture). block_size: 8, 16 or 32. threads: stripe workers including the
     // caller (0 = every hardware thread); the output is the same for any count.
     // single_line_blocks (vtm, tr): 0 or the block size, TR 23002-9 7.3.2.3's N x 1 segments.
-    FgcFrameSynthesis(FgcFlavour flavour, int block_size, int threads = 1, Kernels kernels = Kernels::kOptimized,
+    FgcPictureSynthesis(FgcFlavour flavour, int block_size, int threads = 1, Kernels kernels = Kernels::kOptimized,
                       int single_line_blocks = 0);
-    ~FgcFrameSynthesis();
+    ~FgcPictureSynthesis();
 
     // Builds whatever templates `params` needs (the only allocation after the first frame
     // of a parameter set). Not thread-safe; do it before synthesizing stripes.

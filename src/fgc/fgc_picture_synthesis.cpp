@@ -1,4 +1,4 @@
-#include "fgc/fgc_synthesis.hpp"
+#include "fgc/fgc_picture_synthesis.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -23,7 +23,7 @@ int default_block_size(FgcFlavour flavour, int luma_width, int luma_height) {
     return 32;
 }
 
-FgcFrameSynthesis::FgcFrameSynthesis(FgcFlavour flavour, int block_size, int threads, Kernels kernels,
+FgcPictureSynthesis::FgcPictureSynthesis(FgcFlavour flavour, int block_size, int threads, Kernels kernels,
                                      int single_line_blocks)
     : flavour_(flavour),
       block_size_(block_size),
@@ -31,7 +31,7 @@ FgcFrameSynthesis::FgcFrameSynthesis(FgcFlavour flavour, int block_size, int thr
       kernels_(kernels),
       cache_(flavour == FgcFlavour::kVtm ? TemplateTransform::kVvcDct2 : TemplateTransform::kRdd5Matrix, block_size) {
     if (flavour == FgcFlavour::kVfgs)
-        throw Error(ErrorCode::kInvalidArgument, "FgcFrameSynthesis runs the rdd5, ffmpeg, vtm and tr flavours; vfgs has its own");
+        throw Error(ErrorCode::kInvalidArgument, "FgcPictureSynthesis runs the rdd5, ffmpeg, vtm and tr flavours; vfgs has its own");
     if (block_size != 8 && block_size != 16 && block_size != 32)
         throw Error(ErrorCode::kInvalidArgument, "block size " + std::to_string(block_size) + " is not 8, 16 or 32");
     if (single_line_blocks != 0 && single_line_blocks != block_size)
@@ -41,11 +41,11 @@ FgcFrameSynthesis::FgcFrameSynthesis(FgcFlavour flavour, int block_size, int thr
     scratch_.resize(std::size_t(pool_->size()));
 }
 
-FgcFrameSynthesis::~FgcFrameSynthesis() = default;
+FgcPictureSynthesis::~FgcPictureSynthesis() = default;
 
-int FgcFrameSynthesis::threads() const { return pool_->size(); }
+int FgcPictureSynthesis::threads() const { return pool_->size(); }
 
-std::size_t FgcFrameSynthesis::scratch_bytes() const {
+std::size_t FgcPictureSynthesis::scratch_bytes() const {
     std::size_t n = 0;
     for (const auto& st : states_) n += st.capacity() * sizeof(uint32_t);
     for (const auto& s : scratch_)
@@ -58,13 +58,13 @@ std::size_t FgcFrameSynthesis::scratch_bytes() const {
     return n;
 }
 
-std::size_t FgcFrameSynthesis::scaled_template_bytes() const {
+std::size_t FgcPictureSynthesis::scaled_template_bytes() const {
     std::size_t n = 0;
     for (const auto& t : scaled_) n += t.bytes();
     return n;
 }
 
-void FgcFrameSynthesis::prepare(const ResolvedFgc& params) {
+void FgcPictureSynthesis::prepare(const ResolvedFgc& params) {
     for (int c = 0; c < 3; c++) {
         auto& list = interval_template_[std::size_t(c)];
         list.clear();
@@ -86,7 +86,7 @@ void FgcFrameSynthesis::prepare(const ResolvedFgc& params) {
     }
 }
 
-bool FgcFrameSynthesis::optimized_for(const ResolvedFgc& params, const FrameView& src) const {
+bool FgcPictureSynthesis::optimized_for(const ResolvedFgc& params, const FrameView& src) const {
     if (kernels_ != Kernels::kOptimized || single_line_ || params.model_id != 0 || params.blending_mode_id != 0)
         return false;
     // ffmpeg: its deblocking depends on which blocks got grain, which the fused deblocking +
@@ -107,7 +107,7 @@ void copy_plane(const PlaneView& src, const PlaneView& dst, int bytes_per_sample
 }
 
 
-void FgcFrameSynthesis::apply(const ResolvedFgc& params, const FrameView& src, const FrameView& dst,
+void FgcPictureSynthesis::apply(const ResolvedFgc& params, const FrameView& src, const FrameView& dst,
                               int32_t pic_offset) {
     prepare(params);
     const bool optimized = optimized_for(params, src);

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "fgc/fgc_synthesis.hpp"
+#include "fgc/fgc_picture_synthesis.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/fgc_params.hpp"
 #include "filmgrain/frame.hpp"
@@ -45,12 +45,12 @@ struct FgcFrameResult {
     std::string message;         // why no grain was added, when that is notable
 };
 
-class FgcSynthesizer {
+class FgcStreamSynthesis {
 public:
-    explicit FgcSynthesizer(const FgcOptions& options);
-    ~FgcSynthesizer();
-    FgcSynthesizer(const FgcSynthesizer&) = delete;
-    FgcSynthesizer& operator=(const FgcSynthesizer&) = delete;
+    explicit FgcStreamSynthesis(const FgcOptions& options);
+    ~FgcStreamSynthesis();
+    FgcStreamSynthesis(const FgcStreamSynthesis&) = delete;
+    FgcStreamSynthesis& operator=(const FgcStreamSynthesis&) = delete;
 
     // An FGC SEI that arrived with the next picture to be applied.
     void receive_sei(const FgcParams& params, FgcCodec codec = FgcCodec::kHevc);
@@ -75,7 +75,7 @@ private:
     bool has_pending_ = false;
     FgcCodec pending_codec_ = FgcCodec::kHevc;
     std::unique_ptr<Active> active_;
-    std::unique_ptr<fgc::FgcFrameSynthesis> synthesis_;
+    std::unique_ptr<fgc::FgcPictureSynthesis> synthesis_;
 };
 
 }  // namespace filmgrain
