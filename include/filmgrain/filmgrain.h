@@ -354,6 +354,59 @@ FG_API void fg_frame_info_init(fg_frame_info* info);
  * is copied unchanged. */
 FG_API fg_status fg_context_apply(fg_context* ctx, const fg_frame* src, const fg_frame* dst, fg_frame_info* info);
 
+/* ---- stream scanning (2.0) ----------------------------------------------------------- */
+
+/* Film grain metadata in a coded elementary stream, for players and tools that do not parse
+ * the stream themselves: FGC SEI payloads (payloadType 19), ITU-T T.35 payloads (SEI
+ * payloadType 4 or AV1 metadata OBUs: AFGS1 among them) and AV1 frame-header film grain, per
+ * access unit (H.26x) or temporal unit (AV1), with the picture ids fg_context_apply takes.
+ * Damage in one unit is a warning on that unit; scanning goes on with the next one. */
+typedef enum fg_stream_codec {
+    FG_STREAM_H264 = 0, /* Annex-B byte stream */
+    FG_STREAM_H265 = 1,
+    FG_STREAM_H266 = 2,
+    FG_STREAM_AV1 = 3   /* IVF, low-overhead OBUs (Section 5) or Annex-B length-delimited */
+} fg_stream_codec;
+
+typedef struct fg_stream_scan fg_stream_scan;
+
+/* One unit. Units are indexed in output order: by POC within each coded video sequence
+ * (H.26x), in decode order for AV1. */
+typedef struct fg_stream_unit {
+    int decode_index;   /* its place in decode order */
+    uint64_t offset;    /* its first byte in the stream */
+    int has_poc;        /* H.26x: poc is known */
+    int32_t poc;        /* PicOrderCntVal, for fg_picture_ids.poc */
+    int32_t idr_pic_id; /* H.264 IDR pictures, else 0 */
+    int sequence;       /* coded video sequence count (for fg_context_reset between them) */
+    int output;         /* 0: a picture decoders drop (RASL after a CRA that starts decoding) */
+    int fgc_count;      /* FGC SEI payloads: fg_stream_scan_fgc_payload */
+    int t35_count;      /* T.35 payloads: fg_stream_scan_t35_payload */
+    int has_av1_grain;  /* AV1 with film_grain_params_present: fg_stream_scan_av1_grain */
+    int warning_count;  /* fg_stream_scan_warning */
+} fg_stream_unit;
+
+/* Scans `size` bytes of a whole elementary stream. On failure *out is NULL and `message` (if
+ * not NULL) says why. The scan keeps copies of the payloads; `data` may be freed after. */
+FG_API fg_status fg_stream_scan_create(const uint8_t* data, size_t size, int codec, fg_stream_scan** out,
+                                       char* message, size_t message_size);
+FG_API void fg_stream_scan_destroy(fg_stream_scan* scan); /* NULL is allowed */
+FG_API int fg_stream_scan_unit_count(const fg_stream_scan* scan);
+FG_API fg_status fg_stream_scan_unit(const fg_stream_scan* scan, int unit, fg_stream_unit* out);
+/* Payload j of unit `unit`: the payloadType 19 body, for fg_context_push_fgc_sei ... */
+FG_API fg_status fg_stream_scan_fgc_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data,
+                                            size_t* size);
+/* ... the T.35 bytes from itu_t_t35_country_code on, for fg_context_push_afgs1_t35 ... */
+FG_API fg_status fg_stream_scan_t35_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data,
+                                            size_t* size);
+/* ... the film grain of the frame an AV1 unit shows (update_grain = 0 resolved from its
+ * reference slot; apply_grain = 0 for none), for fg_context_push_av1_grain. */
+FG_API fg_status fg_stream_scan_av1_grain(const fg_stream_scan* scan, int unit, fg_av1_grain* out);
+/* Warning j of a unit (unit -1: of the stream as a whole); NULL when there is none. Valid
+ * until the scan is destroyed. */
+FG_API const char* fg_stream_scan_warning(const fg_stream_scan* scan, int unit, int j);
+FG_API int fg_stream_scan_stream_warning_count(const fg_stream_scan* scan);
+
 #ifdef __cplusplus
 }
 #endif

@@ -43,14 +43,6 @@ Av1ColorInfo color_of(const Av1SequenceHeader& h, int matrix_coefficients) {
     return c;
 }
 
-// The T.35 bytes from the country code on, as AFGS1's metadata_aom_itu_t_t35() starts.
-std::vector<uint8_t> t35_bytes(const T35Payload& t) {
-    std::vector<uint8_t> b{uint8_t(t.country_code)};
-    if (t.country_code == 0xFF) b.push_back(uint8_t(t.country_code_extension));
-    b.insert(b.end(), t.bytes.begin(), t.bytes.end());
-    return b;
-}
-
 // film_grain_params() of each shown frame, as the scan resolved them.
 std::vector<Av1FrameParams> frames_from_frame_headers(const StreamScan& scan, std::vector<std::string>& warnings) {
     std::optional<Av1SequenceHeader> sequence;

@@ -89,4 +89,11 @@ bool parse_t35_payload(const uint8_t* data, std::size_t size, T35Payload& out) {
     return true;
 }
 
+std::vector<uint8_t> t35_bytes(const T35Payload& t) {
+    std::vector<uint8_t> b{uint8_t(t.country_code)};
+    if (t.country_code == 0xFF) b.push_back(uint8_t(t.country_code_extension));
+    b.insert(b.end(), t.bytes.begin(), t.bytes.end());
+    return b;
+}
+
 }  // namespace filmgrain::bitstream

@@ -35,6 +35,9 @@ struct T35Payload {
     std::vector<uint8_t> bytes;      // everything after the country code(s)
 };
 
+// The T.35 bytes from the country code on, as AFGS1's metadata_aom_itu_t_t35() starts.
+std::vector<uint8_t> t35_bytes(const T35Payload& t);
+
 // Returns false (and leaves `out` untouched) on an empty payload.
 bool parse_t35_payload(const uint8_t* data, std::size_t size, T35Payload& out);
 

@@ -81,6 +81,7 @@ inline constexpr std::size_t kMaxStreamFileBytes = std::size_t(1) << 30;
 // Reads the file (Error kIo when it cannot, or when it holds more than kMaxStreamFileBytes)
 // and scans it; codec detected when absent. A pipe or device whose first 16 MiB are neither a
 // recognisable stream nor a container (e.g. /dev/zero) fails then, without reading on.
+// Tool side (stream_file_scan.cpp): not in libfilmgrain, which does no file I/O.
 StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> codec);
 
 // The units a decoder outputs, in output order: by POC within each coded video sequence

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <cstddef>
 #include <string>
@@ -12,6 +13,8 @@
 #include <iterator>
 #include <vector>
 
+#include "bitstream/sei_messages.hpp"
+#include "bitstream/stream_scan.hpp"
 #include "core/thread_pool.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/filmgrain.hpp"
@@ -661,4 +664,145 @@ fg_status fg_context_push_av1_grain(fg_context* ctx, const fg_av1_grain* grain) 
         const fg_av1_grain g = sized_copy(grain, sizeof(fg_av1_grain), default_av1_grain(), "grain");
         ctx->grain.receive_av1_params(from_av1_grain(g), 0, g.matrix_coefficients);
     });
+}
+
+// ---- stream scanning ------------------------------------------------------------------
+
+struct fg_stream_scan {
+    struct Unit {
+        fg_stream_unit info{};
+        std::vector<std::vector<uint8_t>> fgc;
+        std::vector<std::vector<uint8_t>> t35;
+        fg_av1_grain av1_grain{};
+        std::vector<std::string> warnings;
+    };
+    std::vector<Unit> units;  // output order
+    std::vector<std::string> warnings;
+};
+
+namespace {
+
+filmgrain::bitstream::StreamCodec to_stream_codec(int codec) {
+    switch (codec) {
+    case FG_STREAM_H264: return filmgrain::bitstream::StreamCodec::kH264;
+    case FG_STREAM_H265: return filmgrain::bitstream::StreamCodec::kH265;
+    case FG_STREAM_H266: return filmgrain::bitstream::StreamCodec::kH266;
+    case FG_STREAM_AV1: return filmgrain::bitstream::StreamCodec::kAv1;
+    }
+    invalid(filmgrain::out_of_range_message("codec", codec, FG_STREAM_H264, FG_STREAM_AV1) +
+            " (fg_stream_codec: 0 H.264, 1 H.265, 2 H.266, 3 AV1)");
+}
+
+const fg_stream_scan::Unit& scan_unit(const fg_stream_scan* scan, int unit) {
+    if (!scan) invalid("fg_stream_scan is NULL");
+    if (unit < 0 || std::size_t(unit) >= scan->units.size())
+        invalid(filmgrain::out_of_range_message("unit", unit, 0, (long long)scan->units.size() - 1));
+    return scan->units[std::size_t(unit)];
+}
+
+void payload_out(const std::vector<std::vector<uint8_t>>& list, int j, const char* what, const uint8_t** data,
+                 size_t* size) {
+    if (!data || !size) invalid(!data ? "data is NULL" : "size is NULL");
+    if (j < 0 || std::size_t(j) >= list.size())
+        invalid(filmgrain::out_of_range_message(what, j, 0, (long long)list.size() - 1));
+    *data = list[std::size_t(j)].data();
+    *size = list[std::size_t(j)].size();
+}
+
+}  // namespace
+
+fg_status fg_stream_scan_create(const uint8_t* data, size_t size, int codec, fg_stream_scan** out, char* message,
+                                size_t message_size) {
+    std::string error;
+    if (out) *out = nullptr;
+    const fg_status st = guarded(error, [&] {
+        if (!out) invalid("out is NULL");
+        if (!data && size) invalid("data is NULL with size " + std::to_string(size));
+        namespace bs = filmgrain::bitstream;
+        const bs::StreamScan found = bs::scan_stream(data, size, to_stream_codec(codec));
+        auto scan = std::make_unique<fg_stream_scan>();
+        scan->warnings = found.warnings;
+        // The AV1 colour description a unit's grain is synthesized with: the sequence
+        // header in force at that unit (decode order).
+        std::vector<int> matrix(found.units.size(), 2);
+        int current_matrix = 2;
+        for (std::size_t k = 0; k < found.units.size(); k++) {
+            if (found.units[k].av1_sequence_header)
+                current_matrix = found.units[k].av1_sequence_header->matrix_coefficients;
+            matrix[k] = current_matrix;
+        }
+        for (const bs::AccessUnit* au : bs::units_in_output_order(found)) {
+            fg_stream_scan::Unit u;
+            u.info.decode_index = au->index;
+            u.info.offset = au->offset;
+            u.info.has_poc = au->poc.has_value();
+            u.info.poc = au->poc.value_or(0);
+            u.info.idr_pic_id = au->idr_pic_id.value_or(0);
+            u.info.sequence = au->sequence;
+            u.info.output = au->output;
+            for (const bs::FoundFgc& f : au->fgc) u.fgc.push_back(f.payload);
+            for (const bs::FoundT35& t : au->t35) u.t35.push_back(bs::t35_bytes(t.t35));
+            if (au->av1_frame_grain) {
+                u.info.has_av1_grain = 1;
+                u.av1_grain = to_av1_grain(*au->av1_frame_grain, matrix[std::size_t(au->index)]);
+            } else {
+                u.av1_grain = default_av1_grain();
+            }
+            u.warnings = au->warnings;
+            u.info.fgc_count = int(u.fgc.size());
+            u.info.t35_count = int(u.t35.size());
+            u.info.warning_count = int(u.warnings.size());
+            scan->units.push_back(std::move(u));
+        }
+        *out = scan.release();
+    });
+    copy_message(error, message, message_size);
+    return st;
+}
+
+void fg_stream_scan_destroy(fg_stream_scan* scan) { delete scan; }
+
+int fg_stream_scan_unit_count(const fg_stream_scan* scan) { return scan ? int(scan->units.size()) : 0; }
+
+int fg_stream_scan_stream_warning_count(const fg_stream_scan* scan) { return scan ? int(scan->warnings.size()) : 0; }
+
+fg_status fg_stream_scan_unit(const fg_stream_scan* scan, int unit, fg_stream_unit* out) {
+    std::string error;
+    return guarded(error, [&] {
+        const fg_stream_scan::Unit& u = scan_unit(scan, unit);
+        if (!out) invalid("out is NULL");
+        *out = u.info;
+    });
+}
+
+fg_status fg_stream_scan_fgc_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data, size_t* size) {
+    std::string error;
+    return guarded(error, [&] { payload_out(scan_unit(scan, unit).fgc, j, "j (FGC SEI payload)", data, size); });
+}
+
+fg_status fg_stream_scan_t35_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data, size_t* size) {
+    std::string error;
+    return guarded(error, [&] { payload_out(scan_unit(scan, unit).t35, j, "j (T.35 payload)", data, size); });
+}
+
+fg_status fg_stream_scan_av1_grain(const fg_stream_scan* scan, int unit, fg_av1_grain* out) {
+    std::string error;
+    return guarded(error, [&] {
+        const fg_stream_scan::Unit& u = scan_unit(scan, unit);
+        if (!out) invalid("out is NULL");
+        if (!u.info.has_av1_grain) invalid("unit " + std::to_string(unit) + " has no AV1 frame-header film grain");
+        *out = u.av1_grain;
+    });
+}
+
+const char* fg_stream_scan_warning(const fg_stream_scan* scan, int unit, int j) {
+    if (!scan || j < 0) return nullptr;
+    const std::vector<std::string>* list = &scan->warnings;
+    if (unit >= 0) {
+        if (std::size_t(unit) >= scan->units.size()) return nullptr;
+        list = &scan->units[std::size_t(unit)].warnings;
+    } else if (unit != -1) {
+        return nullptr;
+    }
+    return std::size_t(j) < list->size() ? (*list)[std::size_t(j)].c_str() : nullptr;
 }

@@ -56,33 +56,35 @@ void FgcPictureSynthesis::reference_stripe(const ResolvedFgc& params, int c, con
             const int x0 = bx * rb + xo, y0 = by * rb + yo;
             if (inside && (x0 >= w || y0 >= h)) continue;
             const int cols = inside ? std::min(bs, w - x0) : bs;
-            int block_interval = -1;
-            if (!line) {
-                const int avg = ffmpeg   ? block_average_zero_outside<Pixel>(src, x0, y0, bs, bit_depth)
-                                : inside ? block_average_inside<Pixel>(src, x0, y0, bs, bit_depth)
-                                         : block_average_replicated<Pixel>(src, x0, y0, bs, bit_depth);
-                block_interval = comp.interval_of_intensity[std::size_t(avg)];
-                if (block_interval < 0) continue;  // no interval: this block gets no grain
-                if (ffmpeg) has_grain[std::size_t(yo / bs) * block_columns + std::size_t(x0 / bs)] = 1;
-            }
-            for (int l = 0; l < bs; l++) {
-                int iv = block_interval;
-                if (line) {
-                    if (inside && y0 + l >= h) break;
-                    const int avg = inside ? segment_average_inside<Pixel>(src, x0, y0 + l, bs, bit_depth)
-                                           : segment_average_replicated<Pixel>(src, x0, y0 + l, bs, bit_depth);
-                    iv = comp.interval_of_intensity[std::size_t(avg)];
-                    if (iv < 0) continue;
-                }
+            // Rows l0..l1 of the block from interval iv's template (single-line blocks: the
+            // first interval's, one template for the picture; only the scale follows iv).
+            auto emit_rows = [&](int l0, int l1, int iv) {
                 const ResolvedInterval& ri = comp.intervals[std::size_t(iv)];
-                // Single-line blocks: one template for the picture, the first interval's.
                 const GrainTemplate& t = *templates[line ? 0 : std::size_t(iv)];
                 const int32_t scale = off.sign * ri.scale;
-                const int8_t* trow = t[std::size_t(off.y + yo + l)].data() + off.x + xo;
-                const std::ptrdiff_t at = std::ptrdiff_t(yo + l) * stride + x0;
-                scale_template_row(trow, scale, shift, stripe + at, cols);
-                if (correlate) std::fill(rho + at, rho + at + cols, int16_t(ri.ar[2]));
+                for (int l = l0; l < l1; l++) {
+                    const std::ptrdiff_t at = std::ptrdiff_t(yo + l) * stride + x0;
+                    scale_template_row(t[std::size_t(off.y + yo + l)].data() + off.x + xo, scale, shift, stripe + at,
+                                       cols);
+                    if (correlate) std::fill(rho + at, rho + at + cols, int16_t(ri.ar[2]));
+                }
+            };
+            if (line) {
+                for (int l = 0; l < bs && !(inside && y0 + l >= h); l++) {
+                    const int avg = inside ? segment_average_inside<Pixel>(src, x0, y0 + l, bs, bit_depth)
+                                           : segment_average_replicated<Pixel>(src, x0, y0 + l, bs, bit_depth);
+                    const int iv = comp.interval_of_intensity[std::size_t(avg)];
+                    if (iv >= 0) emit_rows(l, l + 1, iv);
+                }
+                continue;
             }
+            const int avg = ffmpeg   ? block_average_zero_outside<Pixel>(src, x0, y0, bs, bit_depth)
+                            : inside ? block_average_inside<Pixel>(src, x0, y0, bs, bit_depth)
+                                     : block_average_replicated<Pixel>(src, x0, y0, bs, bit_depth);
+            const int iv = comp.interval_of_intensity[std::size_t(avg)];
+            if (iv < 0) continue;  // no interval: this block gets no grain
+            if (ffmpeg) has_grain[std::size_t(yo / bs) * block_columns + std::size_t(x0 / bs)] = 1;
+            emit_rows(0, bs, iv);
         }
     }
     const int rows = std::min(rb, h - by * rb);
