@@ -406,6 +406,9 @@ FG_API fg_status fg_stream_scan_av1_grain(const fg_stream_scan* scan, int unit, 
  * until the scan is destroyed. */
 FG_API const char* fg_stream_scan_warning(const fg_stream_scan* scan, int unit, int j);
 FG_API int fg_stream_scan_stream_warning_count(const fg_stream_scan* scan);
+/* Why the last failed call on `scan` failed, naming the argument and its allowed range ("" after
+ * a success). */
+FG_API const char* fg_stream_scan_last_error(const fg_stream_scan* scan);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <iterator>
 #include <vector>
 
@@ -678,9 +679,14 @@ struct fg_stream_scan {
     };
     std::vector<Unit> units;  // output order
     std::vector<std::string> warnings;
+    // Why the last call on this scan failed: the scan is read-only to its callers, its
+    // error is not.
+    mutable std::string last_error;
 };
 
 namespace {
+
+const char* const kNullScan = "fg_stream_scan is NULL";
 
 filmgrain::bitstream::StreamCodec to_stream_codec(int codec) {
     switch (codec) {
@@ -694,15 +700,24 @@ filmgrain::bitstream::StreamCodec to_stream_codec(int codec) {
 }
 
 const fg_stream_scan::Unit& scan_unit(const fg_stream_scan* scan, int unit) {
-    if (!scan) invalid("fg_stream_scan is NULL");
+    if (!scan) invalid(kNullScan);
+    if (scan->units.empty()) invalid("unit = " + std::to_string(unit) + ": the stream has no units");
     if (unit < 0 || std::size_t(unit) >= scan->units.size())
         invalid(filmgrain::out_of_range_message("unit", unit, 0, (long long)scan->units.size() - 1));
     return scan->units[std::size_t(unit)];
 }
 
+// Runs `body` for a call on `scan`, its failure's message kept in the scan (if there is one).
+template <typename Body>
+fg_status guarded_scan(const fg_stream_scan* scan, Body&& body) noexcept {
+    std::string none;
+    return guarded(scan ? scan->last_error : none, std::forward<Body>(body));
+}
+
 void payload_out(const std::vector<std::vector<uint8_t>>& list, int j, const char* what, const uint8_t** data,
                  size_t* size) {
     if (!data || !size) invalid(!data ? "data is NULL" : "size is NULL");
+    if (list.empty()) invalid(std::string(what) + " = " + std::to_string(j) + ": the unit has none");
     if (j < 0 || std::size_t(j) >= list.size())
         invalid(filmgrain::out_of_range_message(what, j, 0, (long long)list.size() - 1));
     *data = list[std::size_t(j)].data();
@@ -766,9 +781,12 @@ int fg_stream_scan_unit_count(const fg_stream_scan* scan) { return scan ? int(sc
 
 int fg_stream_scan_stream_warning_count(const fg_stream_scan* scan) { return scan ? int(scan->warnings.size()) : 0; }
 
+const char* fg_stream_scan_last_error(const fg_stream_scan* scan) {
+    return scan ? scan->last_error.c_str() : kNullScan;
+}
+
 fg_status fg_stream_scan_unit(const fg_stream_scan* scan, int unit, fg_stream_unit* out) {
-    std::string error;
-    return guarded(error, [&] {
+    return guarded_scan(scan, [&] {
         const fg_stream_scan::Unit& u = scan_unit(scan, unit);
         if (!out) invalid("out is NULL");
         *out = u.info;
@@ -776,18 +794,15 @@ fg_status fg_stream_scan_unit(const fg_stream_scan* scan, int unit, fg_stream_un
 }
 
 fg_status fg_stream_scan_fgc_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data, size_t* size) {
-    std::string error;
-    return guarded(error, [&] { payload_out(scan_unit(scan, unit).fgc, j, "j (FGC SEI payload)", data, size); });
+    return guarded_scan(scan, [&] { payload_out(scan_unit(scan, unit).fgc, j, "j (FGC SEI payload)", data, size); });
 }
 
 fg_status fg_stream_scan_t35_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data, size_t* size) {
-    std::string error;
-    return guarded(error, [&] { payload_out(scan_unit(scan, unit).t35, j, "j (T.35 payload)", data, size); });
+    return guarded_scan(scan, [&] { payload_out(scan_unit(scan, unit).t35, j, "j (T.35 payload)", data, size); });
 }
 
 fg_status fg_stream_scan_av1_grain(const fg_stream_scan* scan, int unit, fg_av1_grain* out) {
-    std::string error;
-    return guarded(error, [&] {
+    return guarded_scan(scan, [&] {
         const fg_stream_scan::Unit& u = scan_unit(scan, unit);
         if (!out) invalid("out is NULL");
         if (!u.info.has_av1_grain) invalid("unit " + std::to_string(unit) + " has no AV1 frame-header film grain");

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <string>
-#include <type_traits>
 
 #include "fgc/ar_template_generation.hpp"
 #include "fgc/block_randomization.hpp"

@@ -5,30 +5,25 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include <filmgrain/filmgrain.h>
 
 #include "conformance_case.hpp"
+#include "io/xz_file.hpp"
+#include "metadata/json_access.hpp"
 
 namespace fs = std::filesystem;
-using filmgrain::test_support::conformance_dir;
+using namespace filmgrain::test_support;
+using filmgrain::read_json_file;
+using filmgrain::read_whole_file;
 
 namespace {
 
-std::vector<uint8_t> file_bytes(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-nlohmann::json json_file(const fs::path& p) {
-    std::ifstream f(p);
-    return nlohmann::json::parse(f);
+std::vector<uint8_t> stream_of(const ConformanceCase& c, const char* file) {
+    return read_whole_file((fs::path(c.dir) / file).string());
 }
 
 struct ScanDeleter {
@@ -48,15 +43,13 @@ ScanPtr scan_of(const std::vector<uint8_t>& bytes, int codec) {
 
 TEST(CapiStreamScan, FgcSeiOfEveryHevcAccessUnitInOutputOrder) {
     int cases = 0, reordered = 0;
-    for (const auto& entry : fs::directory_iterator(conformance_dir())) {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind("ffmpeg71-", 0) != 0) continue;
+    for (const std::string& name : list_cases("ffmpeg71-")) {
         cases++;
-        const nlohmann::json c = json_file(entry.path() / "case.json");
-        const nlohmann::json sei = json_file(entry.path() / "fgc.json");
-        ScanPtr scan = scan_of(file_bytes(entry.path() / "stream.hevc"), FG_STREAM_H265);
+        const ConformanceCase c = load_case_description(name);
+        const nlohmann::json sei = read_json_file((fs::path(c.dir) / "fgc.json").string());
+        ScanPtr scan = scan_of(stream_of(c, "stream.hevc"), FG_STREAM_H265);
         ASSERT_TRUE(scan) << name;
-        const int frames = c["frames"].get<int>();
+        const int frames = c.frames;
         ASSERT_EQ(fg_stream_scan_unit_count(scan.get()), frames) << name;
         EXPECT_EQ(fg_stream_scan_stream_warning_count(scan.get()), 0) << name;
         bool in_decode_order = true;
@@ -81,12 +74,13 @@ TEST(CapiStreamScan, FgcSeiOfEveryHevcAccessUnitInOutputOrder) {
             ASSERT_EQ(fg_fgc_params_from_sei(payload, size, FG_CODEC_HEVC, &p, message, sizeof message), FG_OK)
                 << message;
             // the SEI the stream maker wrote from fgc.json
-            EXPECT_EQ(p.log2_scale_factor, sei["log2_scale_factor"].get<int>());
-            for (int comp = 0; comp < 3; comp++) {
-                EXPECT_EQ(p.comp_model_present_flag[comp], sei["comp_model_present_flag"][comp].get<int>());
+            EXPECT_EQ(p.log2_scale_factor, sei.at("log2_scale_factor").get<int>());
+            for (std::size_t comp = 0; comp < 3; comp++) {
+                EXPECT_EQ(p.comp_model_present_flag[comp], sei.at("comp_model_present_flag").at(comp).get<int>());
                 if (!p.comp_model_present_flag[comp]) continue;
-                EXPECT_EQ(p.num_intensity_intervals_minus1[comp], sei["num_intensity_intervals_minus1"][comp].get<int>());
-                EXPECT_EQ(p.comp_model_value[comp][0][0], sei["comp_model_value"][comp][0][0].get<int>());
+                EXPECT_EQ(p.num_intensity_intervals_minus1[comp],
+                          sei.at("num_intensity_intervals_minus1").at(comp).get<int>());
+                EXPECT_EQ(p.comp_model_value[comp][0][0], sei.at("comp_model_value").at(comp).at(0).at(0).get<int>());
             }
         }
         reordered += !in_decode_order;
@@ -96,11 +90,10 @@ TEST(CapiStreamScan, FgcSeiOfEveryHevcAccessUnitInOutputOrder) {
 }
 
 TEST(CapiStreamScan, Av1FrameHeaderGrainAsTheCaseRecordsIt) {
-    const fs::path dir = fs::path(conformance_dir()) / "av1_tv16_176x144_420p8";
-    const nlohmann::json c = json_file(dir / "case.json");
-    ScanPtr scan = scan_of(file_bytes(dir / "stream.ivf"), FG_STREAM_AV1);
+    const ConformanceCase c = load_case_description("av1_tv16_176x144_420p8");
+    ScanPtr scan = scan_of(stream_of(c, "stream.ivf"), FG_STREAM_AV1);
     ASSERT_TRUE(scan);
-    const int frames = c["frames"].get<int>();
+    const int frames = c.frames;
     ASSERT_EQ(fg_stream_scan_unit_count(scan.get()), frames);
     for (int k = 0; k < frames; k++) {
         fg_stream_unit u{};
@@ -110,14 +103,14 @@ TEST(CapiStreamScan, Av1FrameHeaderGrainAsTheCaseRecordsIt) {
         fg_av1_grain g;
         fg_av1_grain_init(&g);
         ASSERT_EQ(fg_stream_scan_av1_grain(scan.get(), k, &g), FG_OK);
-        const nlohmann::json& want = c["frames_info"][std::size_t(k)]["params"]["av1"];
-        EXPECT_EQ(g.apply_grain, want["apply_grain"].get<int>()) << "frame " << k;
+        const nlohmann::json& want = c.frame_info(k).at("params").at("av1");
+        EXPECT_EQ(g.apply_grain, want.at("apply_grain").get<int>()) << "frame " << k;
         if (!g.apply_grain) continue;
-        EXPECT_EQ(int(g.seed), want["grain_seed"].get<int>()) << "frame " << k;
-        ASSERT_EQ(g.num_y_points, want["num_y_points"].get<int>());
+        EXPECT_EQ(int(g.seed), want.at("grain_seed").get<int>()) << "frame " << k;
+        ASSERT_EQ(g.num_y_points, want.at("num_y_points").get<int>());
         for (int i = 0; i < g.num_y_points; i++) {
-            EXPECT_EQ(g.y_points[i][0], want["point_y_value"][std::size_t(i)].get<int>());
-            EXPECT_EQ(g.y_points[i][1], want["point_y_scaling"][std::size_t(i)].get<int>());
+            EXPECT_EQ(g.y_points[i][0], want.at("point_y_value").at(std::size_t(i)).get<int>());
+            EXPECT_EQ(g.y_points[i][1], want.at("point_y_scaling").at(std::size_t(i)).get<int>());
         }
         // and it is what a context takes
         fg_context* ctx = nullptr;
@@ -130,7 +123,7 @@ TEST(CapiStreamScan, Av1FrameHeaderGrainAsTheCaseRecordsIt) {
 }
 
 TEST(CapiStreamScan, BadArgumentsNameTheFieldAndItsRange) {
-    const std::vector<uint8_t> bytes = file_bytes(fs::path(conformance_dir()) / "ffmpeg71-352x288-420p8-nmv1" / "stream.hevc");
+    const std::vector<uint8_t> bytes = stream_of(load_case_description("ffmpeg71-352x288-420p8-nmv1"), "stream.hevc");
     fg_stream_scan* s = reinterpret_cast<fg_stream_scan*>(1);
     char message[256] = "";
     EXPECT_EQ(fg_stream_scan_create(bytes.data(), bytes.size(), 7, &s, message, sizeof message),
@@ -148,6 +141,9 @@ TEST(CapiStreamScan, BadArgumentsNameTheFieldAndItsRange) {
     const int n = fg_stream_scan_unit_count(scan.get());
     fg_stream_unit u{};
     EXPECT_EQ(fg_stream_scan_unit(scan.get(), n, &u), FG_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(fg_stream_scan_last_error(scan.get())).find("unit = " + std::to_string(n)), std::string::npos)
+        << fg_stream_scan_last_error(scan.get());
+    EXPECT_NE(std::string(fg_stream_scan_last_error(scan.get())).find("0.." + std::to_string(n - 1)), std::string::npos);
     EXPECT_EQ(fg_stream_scan_unit(scan.get(), -1, &u), FG_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(fg_stream_scan_unit(nullptr, 0, &u), FG_ERROR_INVALID_ARGUMENT);
     const uint8_t* p = nullptr;
@@ -157,6 +153,9 @@ TEST(CapiStreamScan, BadArgumentsNameTheFieldAndItsRange) {
     fg_av1_grain g;
     fg_av1_grain_init(&g);
     EXPECT_EQ(fg_stream_scan_av1_grain(scan.get(), 0, &g), FG_ERROR_INVALID_ARGUMENT) << "an HEVC unit has none";
+    EXPECT_NE(std::string(fg_stream_scan_last_error(scan.get())).find("no AV1 frame-header film grain"), std::string::npos);
+    ASSERT_EQ(fg_stream_scan_unit(scan.get(), 0, &u), FG_OK);
+    EXPECT_STREQ(fg_stream_scan_last_error(scan.get()), "") << "a success clears it";
     EXPECT_EQ(fg_stream_scan_warning(scan.get(), 0, 0), nullptr);
     EXPECT_EQ(fg_stream_scan_warning(scan.get(), n + 3, 0), nullptr);
     EXPECT_EQ(fg_stream_scan_unit_count(nullptr), 0);
@@ -164,7 +163,7 @@ TEST(CapiStreamScan, BadArgumentsNameTheFieldAndItsRange) {
 }
 
 TEST(CapiStreamScan, DamagedStreamsGiveWarningsNotCrashes) {
-    const std::vector<uint8_t> bytes = file_bytes(fs::path(conformance_dir()) / "ffmpeg71-350x198-420p8" / "stream.hevc");
+    const std::vector<uint8_t> bytes = stream_of(load_case_description("ffmpeg71-350x198-420p8"), "stream.hevc");
     ASSERT_GT(bytes.size(), 200u);
     // cut inside the stream: the units before the cut are still found
     for (std::size_t cut : {std::size_t(7), bytes.size() / 3, bytes.size() - 5}) {
@@ -189,4 +188,8 @@ TEST(CapiStreamScan, DamagedStreamsGiveWarningsNotCrashes) {
     ScanPtr scan = scan_of(zeros, FG_STREAM_AV1);
     ASSERT_TRUE(scan);
     EXPECT_GT(fg_stream_scan_stream_warning_count(scan.get()) + fg_stream_scan_unit_count(scan.get()), 0);
+    EXPECT_EQ(fg_stream_scan_unit_count(scan.get()), 0);
+    ASSERT_EQ(fg_stream_scan_stream_warning_count(scan.get()), 1);
+    EXPECT_NE(std::string(fg_stream_scan_warning(scan.get(), -1, 0)).find("temporal delimiter"), std::string::npos)
+        << fg_stream_scan_warning(scan.get(), -1, 0);
 }

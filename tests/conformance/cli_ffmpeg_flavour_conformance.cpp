@@ -9,7 +9,6 @@
 
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <set>
 
 #include "conformance_case.hpp"
@@ -23,29 +22,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct FfmpegCase {
-    std::string name, dir;
-    nlohmann::json json;
-    int width = 0, height = 0, frames = 0;
-    std::size_t frame_bytes() const { return FrameBuffer::frame_bytes(width, height, PixelFormat{ChromaFormat::k420, 8}); }
-};
-
-FfmpegCase load(const std::string& name) {
-    FfmpegCase c;
-    c.name = name;
-    c.dir = (fs::path(conformance_dir()) / name).string();
-    std::ifstream f(fs::path(c.dir) / "case.json");
-    c.json = nlohmann::json::parse(f);
-    c.width = c.json.at("width");
-    c.height = c.json.at("height");
-    c.frames = c.json.at("frames");
-    return c;
-}
-
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
 // Per-picture MD5s of `filmgrain decode --flavour F`.
-std::vector<std::string> decode_md5s(const FfmpegCase& c, const std::string& flavour, const std::string& extra = "") {
+std::vector<std::string> decode_md5s(const ConformanceCase& c, const std::string& flavour, const std::string& extra = "") {
     const fs::path out =
         fs::temp_directory_path() / ("filmgrain-ff71-" + c.name + "-" + flavour + "-" + std::to_string(::getpid()) + ".yuv");
     std::string log;
@@ -66,7 +46,7 @@ std::vector<std::string> decode_md5s(const FfmpegCase& c, const std::string& fla
 class FfmpegFlavourConformance : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(FfmpegFlavourConformance, DecodeEqualsFfmpeg71EveryPicture) {
-    const FfmpegCase c = load(GetParam());
+    const ConformanceCase c = load_case_description(GetParam());
     const auto& expected = c.json.at("expected_md5");
     ASSERT_EQ(int(expected.size()), c.frames);
     for (const std::string threads : {"1", "2"}) {
@@ -79,7 +59,7 @@ TEST_P(FfmpegFlavourConformance, DecodeEqualsFfmpeg71EveryPicture) {
 }
 
 TEST_P(FfmpegFlavourConformance, TheDeparturesTheCaseNamesChangeTheRdd5Output) {
-    const FfmpegCase c = load(GetParam());
+    const ConformanceCase c = load_case_description(GetParam());
     const auto& departures = c.json.at("departures");
     const std::vector<std::string> rdd5 = decode_md5s(c, "rdd5");
     ASSERT_EQ(int(rdd5.size()), c.frames);
@@ -106,7 +86,7 @@ TEST(FfmpegFlavourConformanceSet, TenCasesCoverEveryDeparture) {
     EXPECT_EQ(names.size(), 10u);
     std::set<std::string> seen;
     for (const auto& n : names) {
-        const FfmpegCase c = load(n);
+        const ConformanceCase c = load_case_description(n);
         for (const auto& d : c.json.at("departures")) seen.insert(d.get<std::string>());
     }
     EXPECT_EQ(seen, (std::set<std::string>{"a", "b", "p"}));

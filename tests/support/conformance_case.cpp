@@ -34,7 +34,7 @@ std::vector<std::string> list_cases(const std::string& prefix) {
     return out;
 }
 
-ConformanceCase load_case(const std::string& name) {
+ConformanceCase load_case_description(const std::string& name) {
     ConformanceCase c;
     c.name = name;
     c.dir = (fs::path(conformance_dir()) / name).string();
@@ -45,6 +45,11 @@ ConformanceCase load_case(const std::string& name) {
     c.frames = c.json.at("frames");
     c.format = parse_pix_fmt(c.json.at("pix_fmt").get<std::string>());
     c.output_format = parse_pix_fmt(c.json.value("output_pix_fmt", c.json.at("pix_fmt").get<std::string>()));
+    return c;
+}
+
+ConformanceCase load_case(const std::string& name) {
+    ConformanceCase c = load_case_description(name);
     c.input = read_xz_file((fs::path(c.dir) / "input.yuv.xz").string());
     if (fs::exists(fs::path(c.dir) / "expected.yuv.xz")) c.expected = read_xz_file((fs::path(c.dir) / "expected.yuv.xz").string());
     return c;

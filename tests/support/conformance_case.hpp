@@ -32,6 +32,10 @@ struct ConformanceCase {
     std::string expected_md5(int k) const { return frame_info(k).at("expected_md5").get<std::string>(); }
 };
 
+// case.json and what it says (size, frames, formats), for the cases whose input is a stream
+// (ffmpeg71-*) or that only need the description; `input` and `expected` stay empty.
+ConformanceCase load_case_description(const std::string& name);
+// The description, the clean input and the full golden output when the case has them.
 ConformanceCase load_case(const std::string& name);
 
 // "" when equal; otherwise where the first sample differs, against expected.yuv.xz when

@@ -10,7 +10,7 @@ namespace filmgrain::vfgs {
 
 using fgc::kGaussianLut;
 using fgc::kSeedLut;
-// kDct2Matrix64[k][n]: k-th basis function (frequency), n-th sample.
-inline constexpr const auto& kDct2Matrix64 = fgc::kVvcDct2_64;
+// The VVC DCT-2 matrix (fgc::kVvcDct2_64) reaches the flavour through the shared inverse
+// transform, fgc::inverse_transform_2d.
 
 }  // namespace filmgrain::vfgs

@@ -57,16 +57,16 @@ TEST(VfgsTables, Shapes) {
     EXPECT_EQ(kSeedLut[0], 747538460u);
     EXPECT_EQ(kSeedLut[255], 1358954497u);
     // VVC DCT-2: first row flat 64, row 1 runs 91 .. -91, the 32-point basis rows are the even rows.
-    for (int n = 0; n < 64; ++n) EXPECT_EQ(kDct2Matrix64[0][n], 64);
-    EXPECT_EQ(kDct2Matrix64[1][0], 91);
-    EXPECT_EQ(kDct2Matrix64[1][63], -91);
-    EXPECT_EQ(kDct2Matrix64[32][0], 64);
-    EXPECT_EQ(kDct2Matrix64[32][1], -64);
+    for (int n = 0; n < 64; ++n) EXPECT_EQ(fgc::kVvcDct2_64[0][n], 64);
+    EXPECT_EQ(fgc::kVvcDct2_64[1][0], 91);
+    EXPECT_EQ(fgc::kVvcDct2_64[1][63], -91);
+    EXPECT_EQ(fgc::kVvcDct2_64[32][0], 64);
+    EXPECT_EQ(fgc::kVvcDct2_64[32][1], -64);
     // Rows are nearly orthogonal with norm ~ 64 * 64 * 64.
     long long dot = 0, norm = 0;
     for (int n = 0; n < 64; ++n) {
-        dot += kDct2Matrix64[3][n] * kDct2Matrix64[5][n];
-        norm += kDct2Matrix64[5][n] * kDct2Matrix64[5][n];
+        dot += fgc::kVvcDct2_64[3][n] * fgc::kVvcDct2_64[5][n];
+        norm += fgc::kVvcDct2_64[5][n] * fgc::kVvcDct2_64[5][n];
     }
     EXPECT_LT(std::llabs(dot), 200);
     EXPECT_NEAR(double(norm), 64.0 * 64 * 64, 64.0 * 64 * 64 * 0.01);
