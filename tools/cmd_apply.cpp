@@ -12,7 +12,7 @@
 #include "filmgrain/session.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/aom_grain_table.hpp"
-#include "payload_files.hpp"
+#include "session/parameter_file_feed.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "filmgrain/error.hpp"
 #include "io/xz_file.hpp"
@@ -47,56 +47,6 @@ struct ApplyOptions {
     RawVideoOptions raw;
 };
 
-// Where each picture's FGC SEI comes from.
-class FgcSource {
-public:
-    virtual ~FgcSource() = default;
-    // The SEI that arrives with picture k (if any) and its ids.
-    virtual std::optional<FgcParams> sei_for(int k, FgcPictureIds& ids) = 0;
-};
-
-class ParamsFileSource : public FgcSource {
-public:
-    explicit ParamsFileSource(ParamsFile f) : f_(std::move(f)) {}
-    std::optional<FgcParams> sei_for(int k, FgcPictureIds& ids) override {
-        ids = FgcPictureIds{k, 0};
-        if (!f_.per_frame) return f_.frames[0].fgc;  // one object: every picture
-        if (std::size_t(k) >= f_.frames.size()) return std::nullopt;
-        const FrameParams& fr = f_.frames[k];
-        if (fr.poc) ids.poc = *fr.poc;
-        if (fr.idr_pic_id) ids.idr_pic_id = *fr.idr_pic_id;
-        if (fr.pic_offset) ids = FgcPictureIds{*fr.pic_offset, 0};
-        return fr.fgc;
-    }
-
-private:
-    ParamsFile f_;
-};
-
-class SeiFileSource : public FgcSource {
-public:
-    SeiFileSource(std::vector<std::string> files, FgcCodec codec) : files_(std::move(files)), codec_(codec) {}
-    std::optional<FgcParams> sei_for(int k, FgcPictureIds& ids) override {
-        ids = FgcPictureIds{k, 0};
-        const auto bytes = files_.for_picture(k);
-        if (!bytes) return std::nullopt;
-        try {
-            return parse_fgc_sei_payload(*bytes, codec_);
-        } catch (const Error& e) {
-            throw Error(e.code(), "'" + files_.name_for(k) + "': " + e.what());
-        }
-    }
-
-private:
-    PayloadFiles files_;
-    FgcCodec codec_;
-};
-
-bool ends_with(const std::string& s, const char* suffix) {
-    const std::size_t n = std::strlen(suffix);
-    return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
-}
-
 // The per-frame loop shared by every model: read, synthesize, write, pipelined so that
 // the three overlap (frame_pipeline.hpp); the output file appears only when every frame
 // succeeded.
@@ -125,129 +75,36 @@ int process_video(const ApplyOptions& o, const VideoInfo& out_override, bool ove
     return 0;
 }
 
-// Stream state and synthesis are the session's (include/filmgrain/session.hpp): the tool
-// reads files and hands each picture's metadata over as a decoder would.
-SessionOptions session_options(const ApplyOptions& o) {
+// Stream state and synthesis are the session's (include/filmgrain/session.hpp); what each
+// picture receives is the parameter-file feed's (session/parameter_file_feed.hpp), which
+// the GStreamer element's properties share.
+SessionOptions session_options(const ApplyOptions& o, FgcFlavour flavour, session::FeedModel model) {
     SessionOptions so;
     so.threads = o.threads;
     so.clip_to_restricted_range = o.clip_to_restricted_range;
-    return so;
-}
-
-// A message of the session about picture k (passthrough, cancel, no AFGS1 payload...).
-void report(const ApplyOptions& o, int k, const ApplyResult& r) {
-    if (!r.message.empty() && !o.quiet) std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
-}
-
-int run_av1(const ApplyOptions& o) {
-    std::vector<Av1FrameParams> frames;
-    std::optional<AomGrainTable> table;
-    if (ends_with(o.params, ".tbl")) {
-        table = read_aom_grain_table(o.params);
-    } else {
-        frames = av1_frame_params_from_json(read_json_file(o.params));
-        if (frames.empty()) throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' has no AV1 frame");
-    }
-    const bool single = frames.size() == 1;
-    Session session(session_options(o));
-    return process_video(
-        o, {}, false,
-        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
-            Av1FilmGrainParams p;
-            int mc = o.matrix_coefficients;
-            if (table) {
-                // libaom tables are indexed by time in 10 MHz ticks
-                const int64_t ts = int64_t(k) * 10000000 * info.fps_den / info.fps_num;
-                const auto idx = table->find_index(ts);
-                if (!idx)
-                    throw Error(ErrorCode::kInvalidParams, "grain table '" + o.params + "' has no entry for frame " +
-                                                               std::to_string(k) + " (timestamp " + std::to_string(ts) +
-                                                               ")");
-                p = table->resolved_params(*idx);
-            } else {
-                const Av1FrameParams& fp = single ? frames[0] : frames.at(std::min<std::size_t>(k, frames.size() - 1));
-                if (!single && std::size_t(k) >= frames.size())
-                    throw Error(ErrorCode::kInvalidParams, "parameter file '" + o.params + "' lists " +
-                                                               std::to_string(frames.size()) +
-                                                               " frames but the input has more");
-                p = fp.grain;
-                if (mc < 0 && fp.color) mc = fp.color->matrix_coefficients;
-            }
-            if (mc < 0) mc = 2;  // unspecified
-            // a file's set is complete: nothing to load from a reference slot
-            p.update_grain = 1;
-            session.receive_av1_params(p, 0, mc);
-            FrameInfo fi;
-            fi.ids.poc = k;
-            report(o, k, session.apply(in.view(), out.view(), &fi));
-        },
-        "AV1 film grain");
-}
-
-// AFGS1 T.35 payloads: the stored sets persist across pictures; each picture's
-// payload selects the set for the picture's size, format and bit depth. A picture
-// without a payload gets no grain (the metadata applies to its own picture).
-int run_afgs1(const ApplyOptions& o) {
-    const PayloadFiles files(o.afgs1);
-    Session session(session_options(o));
-    return process_video(
-        o, {}, false,
-        [&](int k, const VideoInfo&, FrameBuffer& in, FrameBuffer& out) {
-            if (const auto bytes = files.for_picture(k)) {
-                try {
-                    session.receive_afgs1_t35(bytes->data(), bytes->size());
-                } catch (const Error& e) {
-                    throw Error(e.code(), "'" + files.name_for(k) + "': " + e.what());
-                }
-            }
-            FrameInfo fi;
-            fi.ids.poc = k;
-            if (o.matrix_coefficients >= 0) fi.matrix_coefficients = o.matrix_coefficients;
-            report(o, k, session.apply(in.view(), out.view(), &fi));
-        },
-        "AFGS1 film grain");
-}
-
-// FGC SEI in every flavour: the source gives each picture's SEI (if any), the session
-// keeps persistence, cancel and the invalid-set policy.
-int run_fgc(const ApplyOptions& o, FgcFlavour flavour, FgcCodec codec, std::unique_ptr<FgcSource> source) {
-    SessionOptions so = session_options(o);
+    if (model != session::FeedModel::kFgc) return so;
     so.flavour = flavour;
     so.persistence = o.persistence == "semantic" ? FgcPersistence::kSemantic : FgcPersistence::kReference;
     so.block_size = o.block_size;
     so.single_line_blocks = o.single_line_blocks;
     so.passthrough_invalid = o.on_invalid == "passthrough";
-    VideoInfo out_override;
-    bool override_format = false;
     if (flavour == FgcFlavour::kVfgs) {
         so.vfgs_seed = o.seed;
         so.vfgs_gain_percent = o.gain;
         so.pattern_interpolation = o.pattern_interpolation;
-        if (!o.output_pix_fmt.empty()) {
-            out_override.format = parse_pix_fmt(o.output_pix_fmt);
-            override_format = true;
-            so.vfgs_output_bit_depth = out_override.format.bit_depth;
-        }
+        if (!o.output_pix_fmt.empty()) so.vfgs_output_bit_depth = parse_pix_fmt(o.output_pix_fmt).bit_depth;
     }
     if (!o.coded_size.empty()) {
         const PictureSize cs = parse_picture_size(o.coded_size, "--coded-size");
         so.coded_width = cs.width;
         so.coded_height = cs.height;
     }
-    Session session(so);
-    const std::string model = std::string("flavour ") + fgc_flavour_name(flavour);
-    return process_video(
-        o, out_override, override_format,
-        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
-            if (override_format && out_override.format.chroma != info.format.chroma)
-                throw Error(ErrorCode::kInvalidArgument, "--output-pix-fmt " + o.output_pix_fmt +
-                                                             " must keep the input's chroma format (" +
-                                                             pix_fmt_name(info.format) + ")");
-            FrameInfo fi;
-            if (auto sei = source->sei_for(k, fi.ids)) session.receive_fgc_params(*sei, codec);
-            report(o, k, session.apply(in.view(), out.view(), &fi));
-        },
-        model.c_str());
+    return so;
+}
+
+// A message of the session about picture k (passthrough, cancel, no AFGS1 payload...).
+void report(const ApplyOptions& o, int k, const ApplyResult& r) {
+    if (!r.message.empty() && !o.quiet) std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
 }
 
 int run_apply(const ApplyOptions& o) {
@@ -259,25 +116,42 @@ int run_apply(const ApplyOptions& o) {
                     "--persistence '" + o.persistence + "' is not known (allowed reference, semantic)");
     if (int(!o.params.empty()) + int(!o.sei.empty()) + int(!o.afgs1.empty()) != 1)
         throw Error(ErrorCode::kInvalidArgument, "give exactly one of --params FILE, --sei FILE or --afgs1 FILE");
-    if (!o.afgs1.empty()) return run_afgs1(o);
-    const FgcCodec codec = parse_fgc_codec(o.sei_codec);
-
-    std::unique_ptr<FgcSource> source;
-    if (!o.params.empty()) {
-        if (ends_with(o.params, ".tbl")) return run_av1(o);
-        ParamsFile pf = load_params_file(o.params);
-        if (!pf.has_fgc() && pf.has_av1()) return run_av1(o);
-        source = std::make_unique<ParamsFileSource>(std::move(pf));
-    } else {
-        source = std::make_unique<SeiFileSource>(o.sei, codec);
+    session::ParameterFiles files;
+    files.params = o.params;
+    files.sei = o.sei;
+    files.afgs1 = o.afgs1;
+    files.sei_codec = parse_fgc_codec(o.sei_codec);
+    files.matrix_coefficients = o.matrix_coefficients;
+    session::ParameterFileFeed feed(files);
+    const session::FeedModel model = feed.model();
+    if (model == session::FeedModel::kFgc) {
+        if (flavour == FgcFlavour::kVfgs && o.single_line_blocks)
+            throw Error(ErrorCode::kInvalidArgument,
+                        "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
+        if (flavour != FgcFlavour::kVfgs &&
+            (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation))
+            throw Error(ErrorCode::kInvalidArgument,
+                        "--seed, --gain, --output-pix-fmt and --pattern-interpolation belong to --flavour vfgs");
     }
-    if (flavour == FgcFlavour::kVfgs && o.single_line_blocks)
-        throw Error(ErrorCode::kInvalidArgument,
-                    "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
-    if (flavour != FgcFlavour::kVfgs && (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation))
-        throw Error(ErrorCode::kInvalidArgument,
-                    "--seed, --gain, --output-pix-fmt and --pattern-interpolation belong to --flavour vfgs");
-    return run_fgc(o, flavour, codec, std::move(source));
+    Session session(session_options(o, flavour, model));
+    VideoInfo out_override;
+    const bool override_format = model == session::FeedModel::kFgc && flavour == FgcFlavour::kVfgs &&
+                                 !o.output_pix_fmt.empty();
+    if (override_format) out_override.format = parse_pix_fmt(o.output_pix_fmt);
+    const std::string name = model == session::FeedModel::kAv1     ? std::string("AV1 film grain")
+                             : model == session::FeedModel::kAfgs1 ? std::string("AFGS1 film grain")
+                                                                   : std::string("flavour ") + fgc_flavour_name(flavour);
+    return process_video(
+        o, out_override, override_format,
+        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
+            if (override_format && out_override.format.chroma != info.format.chroma)
+                throw Error(ErrorCode::kInvalidArgument, "--output-pix-fmt " + o.output_pix_fmt +
+                                                             " must keep the input's chroma format (" +
+                                                             pix_fmt_name(info.format) + ")");
+            const FrameInfo fi = feed.feed(session, k, info.fps_num, info.fps_den);
+            report(o, k, session.apply(in.view(), out.view(), &fi));
+        },
+        name.c_str());
 }
 
 }  // namespace

@@ -95,8 +95,10 @@ private:
     Clock::time_point start_, last_;
 };
 
-// AFGS1 in H.264 / H.265 / H.266 streams: FFmpeg 5.1's decoders neither apply nor export it,
-// so the elementary stream is scanned for the payloads (bitstream/av1_grain_extraction.hpp).
+// AFGS1 in H.264 / H.265 / H.266 SEI and in AV1 metadata OBUs: FFmpeg 5.1's decoders neither
+// apply nor export it, so the elementary stream is scanned for the payloads
+// (bitstream/av1_grain_extraction.hpp). An AV1 frame's own film grain, which FFmpeg exports,
+// takes precedence.
 // Containers (MP4, Matroska...) the scanner does not read are left to libav: empty.
 std::vector<std::optional<Afgs1Payload>> afgs1_in_output_order(const std::string& path,
                                                                 const std::function<void(const std::string&)>& warn) {
@@ -165,10 +167,10 @@ int run_decode(const DecodeOptions& o) {
     };
     // damage is reported even with -q: it is data lost, not progress
     decoder.on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
-    // only H.26x carries AFGS1 in SEI (AV1 grain comes exported): no second read of other files
-    const bool h26x = d.codec_name == "h264" || d.codec_name == "hevc" || d.codec_name == "vvc";
+    // only elementary streams the scanner reads can carry AFGS1: no second read of other files
+    const bool scannable = d.codec_name == "h264" || d.codec_name == "hevc" || d.codec_name == "vvc" || d.codec_name == "av1";
     const std::vector<std::optional<Afgs1Payload>> afgs1 =
-        o.no_grain || !h26x ? std::vector<std::optional<Afgs1Payload>>{} : afgs1_in_output_order(o.input, warn);
+        o.no_grain || !scannable ? std::vector<std::optional<Afgs1Payload>>{} : afgs1_in_output_order(o.input, warn);
     // Pictures are not copied out of the decoder: the synthesis writes its output frame
     // straight from the decoder's picture (as dav1d does), and pictures without grain are
     // written from the decoder's picture itself.

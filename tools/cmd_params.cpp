@@ -19,7 +19,8 @@
 #include "metadata/fgc_sei.hpp"
 #include "metadata/json_access.hpp"
 #include "metadata/params_file.hpp"
-#include "payload_files.hpp"
+#include "io/payload_files.hpp"
+#include "session/parameter_file_feed.hpp"
 
 namespace filmgrain::cli {
 namespace {
@@ -34,11 +35,11 @@ struct ConvertOptions {
     bool quiet = false;
 };
 
-enum class Form { kJson, kTable, kAfgs1, kSei };
+using Form = session::ParameterForm;
+using io::FilePattern;
+using io::PayloadFiles;
 
-std::string form_name(Form f) {
-    return f == Form::kJson ? "json" : f == Form::kTable ? "tbl" : f == Form::kAfgs1 ? "afgs1" : "sei";
-}
+std::string form_name(Form f) { return session::parameter_form_name(f); }
 
 Form parse_form(const std::string& s, const char* option) {
     if (s == "json") return Form::kJson;
@@ -49,45 +50,9 @@ Form parse_form(const std::string& s, const char* option) {
                 std::string(option) + " '" + s + "' is not known (allowed json, tbl, afgs1, sei)");
 }
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-Form form_from_name(const std::string& name, bool sei_codec_given) {
-    if (ends_with(name, ".json")) return Form::kJson;
-    if (ends_with(name, ".tbl")) return Form::kTable;
-    if (ends_with(name, ".sei") || ends_with(name, ".fgc.bin") || sei_codec_given) return Form::kSei;
-    return Form::kAfgs1;
-}
-
-// The first bytes of a file (a form is told by its first non-blank characters; the file
-// may be large or endless, so no more is read).
-std::string file_head(const std::string& name) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(name.c_str(), "rb"), &std::fclose);
-    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + name + "' for reading");
-    char buf[256];
-    return std::string(buf, std::fread(buf, 1, sizeof buf, f.get()));
-}
-
 Form detect_input(const ConvertOptions& o, bool sei_codec_given) {
     if (!o.from.empty()) return parse_form(o.from, "--from");
-    const std::string& name = o.inputs[0];
-    if (!FilePattern::parse(name)) {
-        const std::string head = file_head(name);
-        std::size_t i = 0;
-        while (i < head.size() && std::isspace((unsigned char)head[i])) ++i;
-        if (head.compare(i, 8, "filmgrn1") == 0) return Form::kTable;
-        if (i < head.size() && head[i] == '{') return Form::kJson;
-    }
-    // Binary payloads carry no signature of their own: take them only under a name that
-    // says what they are, so that a picture or a stream is not read as a payload.
-    if (ends_with(name, ".json") || ends_with(name, ".tbl") || ends_with(name, ".sei") || ends_with(name, ".fgc.bin") ||
-        ends_with(name, ".bin") || ends_with(name, ".afgs1") || ends_with(name, ".t35") || sei_codec_given)
-        return form_from_name(name, sei_codec_given);
-    throw Error(ErrorCode::kInvalidArgument,
-                "cannot tell which parameter form '" + name +
-                    "' holds: it is neither JSON nor a libaom grain table, and its name does not end in .sei / "
-                    ".fgc.bin (FGC SEI payload) or .bin / .afgs1 / .t35 (AFGS1 payload); say --from json|tbl|afgs1|sei");
+    return session::detect_parameter_form(o.inputs[0], sei_codec_given);
 }
 
 class Notes {
@@ -328,7 +293,7 @@ ParamsFile read_fgc(Form from, const ConvertOptions& o, FgcCodec codec) {
 int run_convert(const ConvertOptions& o, bool sei_codec_given) {
     if (o.inputs.empty()) throw Error(ErrorCode::kInvalidArgument, "give an input file");
     const Form from = detect_input(o, sei_codec_given);
-    const Form to = o.to.empty() ? form_from_name(o.output, sei_codec_given) : parse_form(o.to, "--to");
+    const Form to = o.to.empty() ? session::parameter_form_from_name(o.output, sei_codec_given) : parse_form(o.to, "--to");
     RawVideoOptions r;
     r.fps = o.fps;
     const VideoInfo info = r.to_info();

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/frame_buffer.hpp"
+#include "io/file_pattern.hpp"
 
 namespace filmgrain::cli {
 
@@ -40,20 +41,6 @@ struct Region {
 // picture (in 64-bit arithmetic, so x + w cannot overflow).
 Region parse_region(std::string_view text, const std::string& option);
 
-// A per-picture file name pattern: exactly one conversion %d / %u / %i, optionally
-// zero-padded to a width (%04d), and "%%" for a literal '%'. A name with no valid
-// conversion, or with any other '%', is not a pattern but a plain file name.
-class FilePattern {
-public:
-    static std::optional<FilePattern> parse(const std::string& name);
-    // The name of picture k (k >= 0).
-    std::string name_for(long long k) const;
-    const std::string& text() const { return text_; }
-
-private:
-    std::string text_, prefix_, suffix_;
-    int width_ = 0;
-    bool zero_pad_ = false;
-};
+using io::FilePattern;
 
 }  // namespace filmgrain::cli

@@ -121,7 +121,6 @@ std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::ve
 std::vector<std::optional<Afgs1Payload>> afgs1_payloads_in_output_order(const StreamScan& scan,
                                                                          std::vector<std::string>& warnings) {
     std::vector<std::optional<Afgs1Payload>> out;
-    if (scan.codec == StreamCodec::kAv1) return out;
     Afgs1Reader reader;
     std::map<const AccessUnit*, Afgs1Payload> by_unit;
     bool any = false;

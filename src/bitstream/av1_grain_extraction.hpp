@@ -30,12 +30,13 @@ namespace filmgrain::bitstream {
 // Throws Error(kMalformedPayload) for a scan that is not AV1 or holds no temporal unit.
 std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::vector<std::string>& warnings);
 
-// AFGS1 in H.264 / H.265 / H.266 streams (T.35 registered user data SEI): the payloads update
-// the 8 stored sets in decode order, and each applies to the picture of its own access unit
-// (AFGS1 text). One entry per output picture (units_in_output_order, dropped pictures left
-// out): the payload of its unit with the sets resolved, or nothing. Several payloads in one
-// unit: each updates the stored sets, the last one chooses. A damaged payload is skipped with
-// a warning. Empty when the stream carries no AFGS1 payload (or is AV1: av1_params_from_scan).
+// AFGS1 in H.264 / H.265 / H.266 streams (T.35 registered user data SEI) and in AV1 metadata
+// OBUs: the payloads update the 8 stored sets in decode order, and each applies to the
+// picture of its own access unit or temporal unit (AFGS1 text). One entry per output picture
+// (units_in_output_order, dropped pictures left out): the payload of its unit with the sets
+// resolved, or nothing. Several payloads in one unit: each updates the stored sets, the last
+// one chooses. A damaged payload is skipped with a warning. Empty when the stream carries no
+// AFGS1 payload.
 std::vector<std::optional<Afgs1Payload>> afgs1_payloads_in_output_order(const StreamScan& scan,
                                                                          std::vector<std::string>& warnings);
 

@@ -50,125 +50,218 @@ void collect_sei(const std::vector<uint8_t>& rbsp, int header_bytes, bool suffix
     }
 }
 
-StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec codec) {
-    StreamScan scan;
-    scan.codec = codec;
-    scan.container = "annexb";
-    const NalCodec nc = nal_codec(codec);
+const char* poc_support_text(StreamCodec codec) {
     switch (codec) {
     case StreamCodec::kH264:
-        scan.poc_support = "H.264 8.2.1: pic_order_cnt_type 0, 1, 2 for frame pictures; IDR resets; MMCO 5 and field pictures not followed";
-        break;
+        return "H.264 8.2.1: pic_order_cnt_type 0, 1, 2 for frame pictures; IDR resets; MMCO 5 and field pictures not followed";
     case StreamCodec::kH265:
-        scan.poc_support = "H.265 8.3.1 from SPS/PPS/first slice segment; IRAP NoRaslOutputFlag (IDR, BLA, CRA first or after EOS)";
-        break;
-    default:
-        scan.poc_support = "H.266 8.3.1 from SPS/PPS/picture header (PH unit or in the slice); IDR, CRA/GDR first or after EOS start a CLVS; ph_poc_msb_cycle_val followed; base layer only";
-        break;
+        return "H.265 8.3.1 from SPS/PPS/first slice segment; IRAP NoRaslOutputFlag (IDR, BLA, CRA first or after EOS)";
+    case StreamCodec::kH266:
+        return "H.266 8.3.1 from SPS/PPS/picture header (PH unit or in the slice); IDR, CRA/GDR first or after EOS start a CLVS; ph_poc_msb_cycle_val followed; base layer only";
+    case StreamCodec::kAv1: return "AV1: temporal units in decode order (one shown frame each)";
     }
-    AnnexBSplit split = split_annexb(data, size);
-    scan.warnings = split.warnings;
+    return "";
+}
+
+}  // namespace
+
+struct NalStreamParser::State {
+    StreamCodec codec;
+    NalCodec nc;
     H264PocDecoder h264;
     H265PocDecoder h265;
     H266PocDecoder h266;
     int sequence = -1;
+    int units = 0;
     AccessUnit cur;
     bool cur_has_vcl = false, cur_open = false;
-    auto finish = [&] {
-        if (cur_open) scan.units.push_back(std::move(cur));
+
+    explicit State(StreamCodec c) : codec(c), nc(nal_codec(c)) {}
+
+    void finish(std::vector<AccessUnit>& done) {
+        if (cur_open) {
+            done.push_back(std::move(cur));
+            units++;
+        }
         cur = AccessUnit{};
-        cur.index = int(scan.units.size());
+        cur.index = units;
         cur_has_vcl = false;
         cur_open = false;
-    };
-    auto open_at = [&](std::size_t offset) {
+    }
+    void open_at(std::size_t offset) {
         if (!cur_open) {
-            cur.offset = offset - 3;  // the start code
-            cur.index = int(scan.units.size());
+            cur.offset = offset >= 3 ? offset - 3 : 0;  // the start code
+            cur.index = units;
             cur_open = true;
         }
-    };
+    }
+    void nal_unit(const uint8_t* nal, std::size_t size, std::size_t offset, std::vector<AccessUnit>& done);
+};
 
-    for (const NalSpan& span : split.nals) {
-        const uint8_t* nal = data + span.offset;
-        NalHeader h;
-        if (!parse_nal_header(nc, nal, span.size, h)) {
-            open_at(span.offset);
-            cur.warnings.push_back("NAL unit at byte " + std::to_string(span.offset) + " shorter than its header");
-            continue;
-        }
-        const std::vector<uint8_t> rbsp = remove_emulation_prevention(nal, span.size);
-        const bool vcl = is_vcl(nc, h.type);
-        // H.266: a picture starts with a PH NAL unit, or with a slice carrying its picture
-        // header; either way the first slice after it is the one counted.
-        const bool new_picture =
-            vcl && (vcl_starts_picture(nc, rbsp.data(), rbsp.size()) || (codec == StreamCodec::kH266 && h266.header_pending()));
-        if (cur_has_vcl && (starts_access_unit(nc, h.type) || new_picture)) finish();
-        open_at(span.offset);
-        cur.nal_units++;
-        if (h.forbidden_bit) {
-            cur.warnings.push_back("NAL unit at byte " + std::to_string(span.offset) + " has forbidden_zero_bit=1; skipped");
-            continue;
-        }
-        if (h.layer_id != 0) continue;  // base layer only
-        try {
-            if (is_sps(nc, h.type)) {
-                if (codec == StreamCodec::kH264) h264.parse_sps(rbsp);
-                if (codec == StreamCodec::kH265) h265.parse_sps(rbsp);
-                if (codec == StreamCodec::kH266) h266.parse_sps(rbsp);
-            } else if (is_pps(nc, h.type)) {
-                if (codec == StreamCodec::kH264) h264.parse_pps(rbsp);
-                if (codec == StreamCodec::kH265) h265.parse_pps(rbsp);
-                if (codec == StreamCodec::kH266) h266.parse_pps(rbsp);
-            } else if (codec == StreamCodec::kH266 && h.type == kH266PictureHeaderNut) {
-                h266.parse_picture_header_unit(rbsp);
-            } else if (is_prefix_sei(nc, h.type) || is_suffix_sei(nc, h.type)) {
-                collect_sei(rbsp, h.header_bytes, is_suffix_sei(nc, h.type), codec, cur);
-            } else if (is_end_of_sequence(nc, h.type)) {
-                if (codec == StreamCodec::kH265) h265.end_of_sequence();
-                if (codec == StreamCodec::kH266) h266.end_of_sequence();
-            } else if (vcl) {
-                cur_has_vcl = true;
-                if (!new_picture) {
-                    if (cur.pictures == 0 && cur.warnings.empty())
-                        cur.warnings.push_back(nal_type_name(nc, h.type) + " NAL unit at byte " + std::to_string(span.offset) +
-                                               ": a slice whose picture start (first slice or picture header) is missing");
-                    continue;
-                }
-                cur.pictures++;
-                cur.picture_type = nal_type_name(nc, h.type);
-                if (codec == StreamCodec::kH264) {
-                    const H264PictureOrder o = h264.picture(rbsp);
-                    if (o.idr) sequence++;
-                    cur.poc = o.poc;
-                    cur.idr_pic_id = o.idr_pic_id;
-                    if (!o.poc) cur.warnings.push_back("field picture: POC not derived");
-                } else if (codec == StreamCodec::kH265) {
-                    const H265PictureOrder o = h265.picture(rbsp);
-                    if (o.starts_sequence) sequence++;
-                    cur.poc = o.poc;
-                    cur.output = o.output;
-                } else {
-                    const H266PictureOrder o = h266.picture(rbsp);
-                    if (o.clvs_start) sequence++;
-                    cur.poc = o.poc;
-                    cur.output = o.output;
-                }
-                cur.sequence = std::max(sequence, 0);
+void NalStreamParser::State::nal_unit(const uint8_t* nal, std::size_t size, std::size_t offset,
+                                      std::vector<AccessUnit>& done) {
+    NalHeader h;
+    if (!parse_nal_header(nc, nal, size, h)) {
+        open_at(offset);
+        cur.warnings.push_back("NAL unit at byte " + std::to_string(offset) + " shorter than its header");
+        return;
+    }
+    const std::vector<uint8_t> rbsp = remove_emulation_prevention(nal, size);
+    const bool vcl = is_vcl(nc, h.type);
+    // H.266: a picture starts with a PH NAL unit, or with a slice carrying its picture
+    // header; either way the first slice after it is the one counted.
+    const bool new_picture =
+        vcl && (vcl_starts_picture(nc, rbsp.data(), rbsp.size()) || (codec == StreamCodec::kH266 && h266.header_pending()));
+    if (cur_has_vcl && (starts_access_unit(nc, h.type) || new_picture)) finish(done);
+    open_at(offset);
+    cur.nal_units++;
+    if (h.forbidden_bit) {
+        cur.warnings.push_back("NAL unit at byte " + std::to_string(offset) + " has forbidden_zero_bit=1; skipped");
+        return;
+    }
+    if (h.layer_id != 0) return;  // base layer only
+    try {
+        if (is_sps(nc, h.type)) {
+            if (codec == StreamCodec::kH264) h264.parse_sps(rbsp);
+            if (codec == StreamCodec::kH265) h265.parse_sps(rbsp);
+            if (codec == StreamCodec::kH266) h266.parse_sps(rbsp);
+        } else if (is_pps(nc, h.type)) {
+            if (codec == StreamCodec::kH264) h264.parse_pps(rbsp);
+            if (codec == StreamCodec::kH265) h265.parse_pps(rbsp);
+            if (codec == StreamCodec::kH266) h266.parse_pps(rbsp);
+        } else if (codec == StreamCodec::kH266 && h.type == kH266PictureHeaderNut) {
+            h266.parse_picture_header_unit(rbsp);
+        } else if (is_prefix_sei(nc, h.type) || is_suffix_sei(nc, h.type)) {
+            collect_sei(rbsp, h.header_bytes, is_suffix_sei(nc, h.type), codec, cur);
+        } else if (is_end_of_sequence(nc, h.type)) {
+            if (codec == StreamCodec::kH265) h265.end_of_sequence();
+            if (codec == StreamCodec::kH266) h266.end_of_sequence();
+        } else if (vcl) {
+            cur_has_vcl = true;
+            if (!new_picture) {
+                if (cur.pictures == 0 && cur.warnings.empty())
+                    cur.warnings.push_back(nal_type_name(nc, h.type) + " NAL unit at byte " + std::to_string(offset) +
+                                           ": a slice whose picture start (first slice or picture header) is missing");
+                return;
             }
-        } catch (const Error& e) {
-            cur.warnings.push_back(nal_type_name(nc, h.type) + " NAL unit at byte " + std::to_string(span.offset) + ": " +
-                                   e.what());
+            cur.pictures++;
+            cur.picture_type = nal_type_name(nc, h.type);
+            if (codec == StreamCodec::kH264) {
+                const H264PictureOrder o = h264.picture(rbsp);
+                if (o.idr) sequence++;
+                cur.poc = o.poc;
+                cur.idr_pic_id = o.idr_pic_id;
+                if (!o.poc) cur.warnings.push_back("field picture: POC not derived");
+            } else if (codec == StreamCodec::kH265) {
+                const H265PictureOrder o = h265.picture(rbsp);
+                if (o.starts_sequence) sequence++;
+                cur.poc = o.poc;
+                cur.output = o.output;
+            } else {
+                const H266PictureOrder o = h266.picture(rbsp);
+                if (o.clvs_start) sequence++;
+                cur.poc = o.poc;
+                cur.output = o.output;
+            }
+            cur.sequence = std::max(sequence, 0);
+        }
+    } catch (const Error& e) {
+        cur.warnings.push_back(nal_type_name(nc, h.type) + " NAL unit at byte " + std::to_string(offset) + ": " + e.what());
+    }
+}
+
+NalStreamParser::NalStreamParser(StreamCodec codec) {
+    if (codec == StreamCodec::kAv1)
+        throw Error(ErrorCode::kInvalidArgument, "NalStreamParser: codec av1 has no NAL units (allowed h264, h265, h266)");
+    state_ = std::make_unique<State>(codec);
+}
+NalStreamParser::~NalStreamParser() = default;
+NalStreamParser::NalStreamParser(NalStreamParser&&) noexcept = default;
+NalStreamParser& NalStreamParser::operator=(NalStreamParser&&) noexcept = default;
+
+std::vector<std::string> NalStreamParser::push(const uint8_t* data, std::size_t size, std::size_t offset,
+                                               std::vector<AccessUnit>& done) {
+    AnnexBSplit split = split_annexb(data, size);
+    for (const NalSpan& span : split.nals) state_->nal_unit(data + span.offset, span.size, offset + span.offset, done);
+    return std::move(split.warnings);
+}
+
+void NalStreamParser::end_access_unit(std::vector<AccessUnit>& done) { state_->finish(done); }
+
+void NalStreamParser::reset() { state_ = std::make_unique<State>(state_->codec); }
+
+StreamCodec NalStreamParser::codec() const { return state_->codec; }
+
+AccessUnit Av1StreamParser::push(const Av1TemporalUnit& tu) {
+    AccessUnit au;
+    au.index = units_++;
+    au.offset = tu.offset;
+    au.pts = tu.pts;
+    au.warnings = tu.warnings;
+    au.nal_units = int(tu.obus.size());
+    for (const Av1Obu& obu : tu.obus) {
+        if (obu.type == kObuFrame || obu.type == kObuFrameHeader) au.pictures++;
+        if (obu.type == kObuSequenceHeader) {
+            try {
+                au.av1_sequence_header = parse_av1_sequence_header(obu.payload);
+                sequence_ = au.av1_sequence_header;
+            } catch (const Error& e) {
+                au.warnings.push_back("sequence header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
+            }
+            continue;
+        }
+        // Frame headers are followed only where they carry film grain.
+        if ((obu.type == kObuFrame || obu.type == kObuFrameHeader) && sequence_ && sequence_->film_grain_params_present) {
+            try {
+                if (auto shown = frame_headers_.read(*sequence_, obu)) {
+                    if (au.av1_frame_grain)
+                        au.warnings.push_back("more than one shown frame in the temporal unit; the last one's "
+                                              "film grain is kept");
+                    au.av1_frame_grain = shown->grain;
+                }
+            } catch (const Error& e) {
+                au.warnings.push_back("frame header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
+            }
+            continue;
+        }
+        std::vector<uint8_t> t35;
+        std::string warning;
+        if (av1_metadata_t35(obu, t35, &warning)) {
+            FoundT35 t;
+            if (parse_t35_payload(t35.data(), t35.size(), t.t35))
+                au.t35.push_back(std::move(t));
+            else
+                au.warnings.push_back("empty ITU-T T.35 metadata OBU at byte " + std::to_string(obu.offset));
+        } else if (!warning.empty()) {
+            au.warnings.push_back(warning);
         }
     }
-    finish();
+    return au;
+}
+
+void Av1StreamParser::reset() {
+    sequence_.reset();
+    frame_headers_.reset();
+    units_ = 0;
+}
+
+namespace {
+
+StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec codec) {
+    StreamScan scan;
+    scan.codec = codec;
+    scan.container = "annexb";
+    scan.poc_support = poc_support_text(codec);
+    NalStreamParser parser(codec);
+    scan.warnings = parser.push(data, size, 0, scan.units);
+    parser.end_access_unit(scan.units);
     return scan;
 }
 
 StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
     StreamScan scan;
     scan.codec = StreamCodec::kAv1;
-    scan.poc_support = "AV1: temporal units in decode order (one shown frame each)";
+    scan.poc_support = poc_support_text(StreamCodec::kAv1);
     Av1Container container = Av1Container::kLowOverhead;
     if (looks_like_ivf(data, size))
         container = Av1Container::kIvf;
@@ -177,54 +270,8 @@ StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
     scan.container = container == Av1Container::kAnnexB ? "annexb-av1" : av1_container_name(container);
     Av1Stream s = parse_av1_stream(data, size, container);
     scan.warnings = s.warnings;
-    std::optional<Av1SequenceHeader> sequence;
-    Av1FrameHeaderReader frame_headers;
-    for (Av1TemporalUnit& tu : s.units) {
-        AccessUnit au;
-        au.index = int(scan.units.size());
-        au.offset = tu.offset;
-        au.pts = tu.pts;
-        au.warnings = tu.warnings;
-        au.nal_units = int(tu.obus.size());
-        for (const Av1Obu& obu : tu.obus) {
-            if (obu.type == kObuFrame || obu.type == kObuFrameHeader) au.pictures++;
-            if (obu.type == kObuSequenceHeader) {
-                try {
-                    au.av1_sequence_header = parse_av1_sequence_header(obu.payload);
-                    sequence = au.av1_sequence_header;
-                } catch (const Error& e) {
-                    au.warnings.push_back("sequence header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
-                }
-                continue;
-            }
-            // Frame headers are followed only where they carry film grain.
-            if ((obu.type == kObuFrame || obu.type == kObuFrameHeader) && sequence && sequence->film_grain_params_present) {
-                try {
-                    if (auto shown = frame_headers.read(*sequence, obu)) {
-                        if (au.av1_frame_grain)
-                            au.warnings.push_back("more than one shown frame in the temporal unit; the last one's "
-                                                  "film grain is kept");
-                        au.av1_frame_grain = shown->grain;
-                    }
-                } catch (const Error& e) {
-                    au.warnings.push_back("frame header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());
-                }
-                continue;
-            }
-            std::vector<uint8_t> t35;
-            std::string warning;
-            if (av1_metadata_t35(obu, t35, &warning)) {
-                FoundT35 t;
-                if (parse_t35_payload(t35.data(), t35.size(), t.t35))
-                    au.t35.push_back(std::move(t));
-                else
-                    au.warnings.push_back("empty ITU-T T.35 metadata OBU at byte " + std::to_string(obu.offset));
-            } else if (!warning.empty()) {
-                au.warnings.push_back(warning);
-            }
-        }
-        scan.units.push_back(std::move(au));
-    }
+    Av1StreamParser parser;
+    for (Av1TemporalUnit& tu : s.units) scan.units.push_back(parser.push(tu));
     return scan;
 }
 

@@ -4,10 +4,12 @@
 // warning on that unit; scanning goes on with the next one.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "bitstream/av1_frame_header.hpp"
 #include "bitstream/av1_obu.hpp"
 #include "bitstream/av1_sequence_header.hpp"
 #include "filmgrain/av1_params.hpp"
@@ -71,6 +73,49 @@ struct StreamScan {
     std::vector<AccessUnit> units;
     std::vector<std::string> warnings;
     int bad_units() const;    // units with warnings
+};
+
+// Reads an H.26x stream as a parser element hands it over: any run of Annex B bytes at a
+// time, with the access unit boundaries the caller knows (an access-unit-aligned buffer)
+// given by end_access_unit(). Picture order counts, parameter sets and the coded video
+// sequence count carry over from call to call; scan_stream() is push() of the whole stream
+// and one end_access_unit().
+class NalStreamParser {
+public:
+    explicit NalStreamParser(StreamCodec codec);  // h264, h265, h266; throws Error for av1
+    ~NalStreamParser();
+    NalStreamParser(NalStreamParser&&) noexcept;
+    NalStreamParser& operator=(NalStreamParser&&) noexcept;
+
+    // The NAL units of `data` (Annex B; `offset` is its first byte's position in the
+    // stream, for warnings). Units completed by them (a new access unit started) are
+    // appended to `done`. Returns the damage found between NAL units (no start code...).
+    std::vector<std::string> push(const uint8_t* data, std::size_t size, std::size_t offset,
+                                  std::vector<AccessUnit>& done);
+    // Ends the access unit in progress (appended to `done` when it holds any NAL unit).
+    void end_access_unit(std::vector<AccessUnit>& done);
+    // As a new stream: parameter sets, POC state and unit count forgotten (a seek, a flush).
+    void reset();
+    StreamCodec codec() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+// Reads an AV1 stream one temporal unit at a time, keeping the sequence header and the
+// reference slots the frame headers' film grain resolves against.
+class Av1StreamParser {
+public:
+    AccessUnit push(const Av1TemporalUnit& tu);
+    void reset();
+    // The last sequence header read (nullopt before the first).
+    const std::optional<Av1SequenceHeader>& sequence_header() const { return sequence_; }
+
+private:
+    std::optional<Av1SequenceHeader> sequence_;
+    Av1FrameHeaderReader frame_headers_;
+    int units_ = 0;
 };
 
 StreamScan scan_stream(const uint8_t* data, std::size_t size, StreamCodec codec);

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "option_parsing.hpp"
+#include "io/file_pattern.hpp"
 
-namespace filmgrain::cli {
+namespace filmgrain::io {
 
 // The largest payload file read: an SEI or T.35 payload is at most a few kilobytes, so a
 // larger file (or /dev/zero) is not one.
@@ -36,4 +36,4 @@ private:
     std::vector<std::vector<uint8_t>> fixed_;
 };
 
-}  // namespace filmgrain::cli
+}  // namespace filmgrain::io

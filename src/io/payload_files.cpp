@@ -1,4 +1,4 @@
-#include "payload_files.hpp"
+#include "io/payload_files.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -8,7 +8,7 @@
 
 #include "filmgrain/error.hpp"
 
-namespace filmgrain::cli {
+namespace filmgrain::io {
 
 std::vector<uint8_t> read_payload_file(const std::string& path) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
@@ -61,4 +61,4 @@ std::vector<std::vector<uint8_t>> PayloadFiles::all() const {
     return out;
 }
 
-}  // namespace filmgrain::cli
+}  // namespace filmgrain::io
