@@ -141,7 +141,8 @@ GstFlowReturn transform_ip(GstBaseTransform* t, GstBuffer* buffer) {
             *self->last_warning = w;
             GST_ELEMENT_WARNING(self, STREAM, DECODE, ("%s", w.c_str()), ("unit %d in decode order", data.decode_index));
         }
-        if (stripped) {
+        // a unit of nothing but FGC SEI (not a real access unit) passes as it is
+        if (stripped && !stripped->empty()) {
             auto* owned = new std::vector<uint8_t>(std::move(*stripped));
             GstMemory* mem = gst_memory_new_wrapped(GST_MEMORY_FLAG_READONLY, owned->data(), owned->size(), 0,
                                                     owned->size(), owned,

@@ -1,0 +1,365 @@
+// The GStreamer elements in the pipelines users run (README, "In GStreamer"): gst-launch-1.0
+// with the build tree's plugin (GST_PLUGIN_PATH, set by CTest), on streams the test makes
+// with x265, x264 and aomenc and the project's metadata writers, against `filmgrain decode`
+// and `filmgrain apply` byte for byte.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "bitstream/metadata_insertion.hpp"
+#include "metadata/afgs1.hpp"
+#include "metadata/fgc_sei.hpp"
+#include "stream_fixtures.hpp"
+
+using namespace filmgrain;
+using namespace filmgrain::bitstream;
+using namespace filmgrain::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Sizes are multiples of 8: GStreamer's raw I420 rows are padded to 4 bytes (chroma too), and
+// filesink writes buffers as they are, so only such sizes compare with a packed .yuv file.
+constexpr int kWidth = 160, kHeight = 128, kFrames = 12;
+
+// -f: a crash in an element ends the process (gst-launch otherwise spins waiting for a
+// debugger); -q leaves out the state messages, not the warnings and errors the elements post,
+// which `verbose` keeps in the log.
+std::string gst_launch(const std::string& pipeline, const fs::path& log, bool verbose = false) {
+    return std::string("gst-launch-1.0 -f ") + (verbose ? "" : "-q ") + pipeline + " > " + q(log) + " 2>&1";
+}
+
+std::string text_of(const fs::path& p) {
+    const auto b = read_bytes(p);
+    return std::string(b.begin(), b.end());
+}
+
+// x265 with B-frames (decode order differs from output order) and a different FGC SEI in
+// every access unit: a picture matched with the wrong SEI or seeded with the wrong POC shows.
+fs::path make_h265_fgc_stream(const fs::path& dir, int bit_depth) {
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, bit_depth);
+    const std::string depth = bit_depth > 8 ? " --output-depth 10 --profile main10" : "";
+    EXPECT_TRUE(run_or_fail("x265 --log-level error --preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 "
+                            "--no-scenecut --no-open-gop" + depth + " --input " + q(dir / "src.y4m") + " -o " +
+                            q(dir / "raw.hevc")));
+    const auto stream = insert_sei(read_bytes(dir / "raw.hevc"), StreamCodec::kH265, [](int au) {
+        AccessUnitSei s;
+        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc)}};
+        return s;
+    });
+    write_bytes(dir / "fgc.hevc", stream);
+    return dir / "fgc.hevc";
+}
+
+struct H265Case {
+    int bit_depth;
+    const char* flavour;
+};
+
+class GstH265Fgc : public ::testing::TestWithParam<H265Case> {};
+
+}  // namespace
+
+TEST(GstInspect, ListsBothElementsAndTheirProperties) {
+    const fs::path dir = fresh_test_dir("gst-inspect");
+    ASSERT_TRUE(run_or_fail("gst-inspect-1.0 --plugin filmgrain > " + q(dir / "plugin.txt") + " 2>&1"));
+    const std::string plugin = text_of(dir / "plugin.txt");
+    EXPECT_NE(plugin.find("filmgrainparse"), std::string::npos) << plugin;
+    EXPECT_NE(plugin.find("filmgrain:"), std::string::npos) << plugin;
+    ASSERT_TRUE(run_or_fail("gst-inspect-1.0 filmgrain > " + q(dir / "filter.txt") + " 2>&1"));
+    const std::string filter = text_of(dir / "filter.txt");
+    for (const char* property : {"params", "afgs1", "sei", "sei-codec", "flavour", "threads", "on-invalid",
+                                 "persistence", "enabled"}) {
+        const std::size_t at = filter.find(std::string("\n  ") + property + " ");
+        ASSERT_NE(at, std::string::npos) << property << " missing:\n" << filter;
+        // a description follows the name on the same line
+        const std::size_t colon = filter.find(':', at), eol = filter.find('\n', at + 1);
+        EXPECT_LT(colon, eol) << property;
+        EXPECT_GT(eol - colon, 20u) << property << " has no description";
+    }
+    for (const char* format : {"I420", "I420_10LE", "I420_12LE", "Y42B", "I422_10LE", "Y444", "Y444_10LE", "GRAY8",
+                               "GRAY16_LE"})
+        EXPECT_NE(filter.find(format), std::string::npos) << format;
+    ASSERT_TRUE(run_or_fail("gst-inspect-1.0 filmgrainparse > " + q(dir / "parse.txt") + " 2>&1"));
+    const std::string parse = text_of(dir / "parse.txt");
+    EXPECT_NE(parse.find("strip-fgc-sei"), std::string::npos) << parse;
+    EXPECT_NE(parse.find("video/x-h265"), std::string::npos);
+    EXPECT_NE(parse.find("video/x-av1"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_P(GstH265Fgc, EqualsDecodeWithAvdecAndLibde265) {
+    const H265Case c = GetParam();
+    const fs::path dir = fresh_test_dir(std::string("gst-h265-") + c.flavour + std::to_string(c.bit_depth));
+    const fs::path s = make_h265_fgc_stream(dir, c.bit_depth);
+    const std::string f = std::string(" --flavour ") + c.flavour + " ";
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q" + f + q(s) + " --format yuv -o " + q(dir / "decoded.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(s) + " --format yuv -o " + q(dir / "clean.yuv")));
+    const auto decoded = read_bytes(dir / "decoded.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(kFrames * kWidth * kHeight * 3 / 2 * (c.bit_depth > 8 ? 2 : 1)));
+    ASSERT_NE(decoded, read_bytes(dir / "clean.yuv"));
+    // Debian 12's libde265dec crashes on 10-bit streams by itself (without these elements)
+    std::vector<const char*> decoders = {"avdec_h265"};
+    if (c.bit_depth == 8) decoders.push_back("libde265dec");
+    for (const char* decoder : decoders) {
+        SCOPED_TRACE(decoder);
+        const fs::path out = dir / (std::string(decoder) + ".yuv");
+        ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(s) + " ! h265parse ! filmgrainparse ! " + decoder +
+                                               " ! filmgrain flavour=" + c.flavour + " ! filesink location=" + q(out),
+                                           dir / "log.txt")));
+        EXPECT_TRUE(read_bytes(out) == decoded) << "the pipeline differs from `filmgrain decode`";
+    }
+    // Without taking the FGC SEI out, avdec_h265 (libavcodec) adds its own grain first.
+    ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(s) +
+                                           " ! h265parse ! filmgrainparse strip-fgc-sei=false ! avdec_h265 ! "
+                                           "filesink location=" + q(dir / "libav_grain.yuv"),
+                                       dir / "log.txt")));
+    EXPECT_NE(read_bytes(dir / "libav_grain.yuv"), read_bytes(dir / "clean.yuv"));
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(X265BFrames, GstH265Fgc,
+                         ::testing::Values(H265Case{8, "rdd5"}, H265Case{8, "vtm"}, H265Case{10, "rdd5"},
+                                           H265Case{10, "vtm"}),
+                         [](const auto& info) {
+                             return std::string(info.param.flavour) + "_" + std::to_string(info.param.bit_depth) + "bit";
+                         });
+
+// H.264, two IDRs (x264 numbers them idr_pic_id 0 and 1): rdd5's seed takes the idr_pic_id
+// term (`filmgrain decode` has it from FFmpeg's exported seed, the element from the meta).
+TEST(GstH264Fgc, Rdd5EqualsDecodeAcrossTwoIdrs) {
+    const fs::path dir = fresh_test_dir("gst-h264");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, 8);
+    ASSERT_TRUE(run_or_fail("x264 --quiet --preset ultrafast --bframes 2 --keyint 6 --min-keyint 6 --no-scenecut -o " +
+                            q(dir / "raw.264") + " " + q(dir / "src.y4m") + " 2>/dev/null"));
+    const auto stream = insert_sei(read_bytes(dir / "raw.264"), StreamCodec::kH264, [](int au) {
+        AccessUnitSei s;
+        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kAvc)}};
+        return s;
+    });
+    write_bytes(dir / "fgc.264", stream);
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --flavour rdd5 " + q(dir / "fgc.264") + " --format yuv -o " +
+                            q(dir / "decoded.yuv")));
+    ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(dir / "fgc.264") +
+                                           " ! h264parse ! filmgrainparse ! avdec_h264 ! filmgrain ! filesink location=" +
+                                           q(dir / "gst.yuv"),
+                                       dir / "log.txt")));
+    const auto decoded = read_bytes(dir / "decoded.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(kFrames * kWidth * kHeight * 3 / 2));
+    EXPECT_TRUE(read_bytes(dir / "gst.yuv") == decoded);
+    fs::remove_all(dir);
+}
+
+namespace {
+
+Av1FilmGrainParams av1_params_for(int k) {
+    Av1FilmGrainParams p;
+    p.apply_grain = 1;
+    p.grain_seed = 2000 + 41 * k;
+    p.num_y_points = 2;
+    p.point_y_value[0] = 0;
+    p.point_y_scaling[0] = 50 + 6 * k;
+    p.point_y_value[1] = 255;
+    p.point_y_scaling[1] = 80 - 3 * k;
+    p.num_cb_points = 1;
+    p.point_cb_value[0] = 128;
+    p.point_cb_scaling[0] = 30 + k;
+    p.num_cr_points = 1;
+    p.point_cr_value[0] = 100;
+    p.point_cr_scaling[0] = 35;
+    p.ar_coeff_lag = 1 + k % 3;
+    for (int i = 0; i < p.num_pos_luma(); i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i * 5 + k) % 17 - 8;
+    for (int i = 0; i < p.num_pos_chroma(); i++) {
+        p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i * 3 + k) % 11 - 5;
+        p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i * 7 + k) % 13 + 6;
+    }
+    p.cb_mult = 128 + k;
+    p.cr_offset = 250 + k;
+    p.overlap_flag = k % 2;
+    return p;
+}
+
+// Per temporal unit: a set for the picture and one for a half-size picture (to be ignored),
+// a reseed of the stored set (update_grain_flag = 0) in unit 3, no payload in unit 4.
+std::vector<uint8_t> afgs1_payload_for(int k, int bit_depth) {
+    if (k == 4) return {};
+    auto target = [&](int w, int h) {
+        Afgs1SetTarget t;
+        t.apply_horz_resolution = w;
+        t.apply_vert_resolution = h;
+        t.video_signal_characteristics_flag = 1;
+        t.bit_depth_minus8 = bit_depth - 8;
+        return t;
+    };
+    Afgs1Payload pl;
+    if (k == 3) {
+        Afgs1ParamSet reseed;
+        reseed.params = av1_params_for(2);
+        reseed.params.update_grain = 0;
+        reseed.params.grain_seed = 4321;
+        reseed.target = target(kWidth, kHeight);
+        pl.sets = {reseed};
+    } else {
+        Afgs1ParamSet full, half;
+        full.params = av1_params_for(k);
+        full.target = target(kWidth, kHeight);
+        half.film_grain_param_set_idx = 1;
+        half.params = av1_params_for(k + 10);
+        half.target = target(kWidth / 2, kHeight / 2);
+        pl.sets = {half, full};
+    }
+    return write_afgs1(pl);
+}
+
+}  // namespace
+
+// AV1 with AFGS1 in metadata OBUs and no frame-header grain (aomenc, then the project's
+// metadata insertion): av1dec leaves the pictures clean, filmgrain adds the grain.
+TEST(GstAv1Afgs1, EqualsDecode) {
+    for (int bit_depth : {8, 10}) {
+        SCOPED_TRACE(bit_depth);
+        const fs::path dir = fresh_test_dir("gst-av1-afgs1-" + std::to_string(bit_depth));
+        write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, 6, bit_depth);
+        const std::string depth = bit_depth > 8 ? " --bit-depth=10 --input-bit-depth=10" : "";
+        ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=6 --cpu-used=6" + depth + " -o " + q(dir / "raw.ivf") +
+                                " " + q(dir / "src.y4m")));
+        write_bytes(dir / "afgs1.ivf", insert_av1_t35(read_bytes(dir / "raw.ivf"), [&](int tu) {
+                        std::vector<std::vector<uint8_t>> out;
+                        if (auto p = afgs1_payload_for(tu, bit_depth); !p.empty()) out.push_back(p);
+                        return out;
+                    }));
+        ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "afgs1.ivf") + " --format yuv -o " +
+                                q(dir / "decoded.yuv")));
+        ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(dir / "afgs1.ivf") + " --format yuv -o " +
+                                q(dir / "clean.yuv")));
+        ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(dir / "afgs1.ivf") +
+                                               " ! ivfparse ! av1parse ! filmgrainparse ! av1dec ! filmgrain ! "
+                                               "filesink location=" + q(dir / "gst.yuv"),
+                                           dir / "log.txt")));
+        const auto decoded = read_bytes(dir / "decoded.yuv"), clean = read_bytes(dir / "clean.yuv");
+        const std::size_t frame = std::size_t(kWidth * kHeight * 3 / 2 * (bit_depth > 8 ? 2 : 1));
+        ASSERT_EQ(decoded.size(), 6 * frame);
+        EXPECT_TRUE(read_bytes(dir / "gst.yuv") == decoded);
+        // grain on every picture but unit 4's, which carries no payload
+        for (std::size_t k = 0; k < 6; k++)
+            EXPECT_EQ(std::equal(decoded.begin() + long(k * frame), decoded.begin() + long((k + 1) * frame),
+                                 clean.begin() + long(k * frame)),
+                      k == 4)
+                << "frame " << k;
+        fs::remove_all(dir);
+    }
+}
+
+// H.265 with AFGS1 in T.35 SEI and B-frames: the conformance case made with FFmpeg 7.1.
+TEST(GstH265Afgs1, ConformanceBFramesCaseEqualsDecode) {
+    const fs::path dir = fresh_test_dir("gst-h265-afgs1");
+    const fs::path s = fs::path(FILMGRAIN_SOURCE_DIR) / "conformance/afgs1-352x288-420p8-bframes/stream.hevc";
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(s) + " --format yuv -o " + q(dir / "decoded.yuv")));
+    ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(s) +
+                                           " ! h265parse ! filmgrainparse ! avdec_h265 ! filmgrain ! filesink location=" +
+                                           q(dir / "gst.yuv"),
+                                       dir / "log.txt")));
+    const auto decoded = read_bytes(dir / "decoded.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(8 * 352 * 288 * 3 / 2));
+    EXPECT_TRUE(read_bytes(dir / "gst.yuv") == decoded);
+    fs::remove_all(dir);
+}
+
+// Static parameters: videotestsrc's frames, grain from a parameter file; picture k since the
+// stream start has POC k, as `filmgrain apply` numbers frames.
+TEST(GstStaticParams, EqualsApplyOnTheSameFrames) {
+    const fs::path dir = fresh_test_dir("gst-static");
+    // an FGC SEI payload file: the element tells the form from the name, as params convert does
+    const fs::path fgc = fs::path(FILMGRAIN_SOURCE_DIR) / "conformance/rdd5_352x288_420p10/frame0.fgc.bin";
+    ASSERT_TRUE(fs::exists(fgc));
+    const std::string src = "videotestsrc num-buffers=5 pattern=ball ! video/x-raw,format=I420_10LE,width=" +
+                            std::to_string(kWidth) + ",height=" + std::to_string(kHeight);
+    ASSERT_TRUE(run_or_fail(gst_launch(src + " ! filesink location=" + q(dir / "clean.yuv"), dir / "log.txt")));
+    for (const char* flavour : {"rdd5", "vtm"}) {
+        SCOPED_TRACE(flavour);
+        ASSERT_TRUE(run_or_fail(gst_launch(src + " ! filmgrain flavour=" + flavour + " params=" + q(fgc) +
+                                               " ! filesink location=" + q(dir / "gst.yuv"),
+                                           dir / "log.txt")));
+        ASSERT_TRUE(run_or_fail(tool() + " apply -q --flavour " + flavour + " --size " + std::to_string(kWidth) + "x" +
+                                std::to_string(kHeight) + " --pix-fmt yuv420p10le -i " + q(dir / "clean.yuv") +
+                                " -p " + q(fgc) + " -o " + q(dir / "applied.yuv")));
+        EXPECT_TRUE(read_bytes(dir / "gst.yuv") == read_bytes(dir / "applied.yuv"));
+        EXPECT_NE(read_bytes(dir / "gst.yuv"), read_bytes(dir / "clean.yuv"));
+    }
+    fs::remove_all(dir);
+}
+
+namespace {
+
+// An FGC SEI with a comp_model_value far outside what RDD 5 allows: parsable, invalid.
+std::vector<uint8_t> invalid_fgc_payload() {
+    FgcParams p = fgc_params_for(0);
+    for (auto& c : p.comp)
+        if (c.comp_model_present_flag && !c.intervals.empty()) c.intervals[0].comp_model_value[0] = 5000;
+    return write_fgc_sei_payload(p, FgcCodec::kHevc);
+}
+
+}  // namespace
+
+// Malformed metadata in the stream: passthrough keeps the pipeline running and warns naming the
+// field; error stops it with a message naming the field.
+TEST(GstMalformed, FgcSeiWarnsOrStopsNamingTheField) {
+    const fs::path dir = fresh_test_dir("gst-malformed-fgc");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, 6, 8);
+    ASSERT_TRUE(run_or_fail("x265 --log-level error --preset ultrafast --bframes 2 --keyint 6 --input " +
+                            q(dir / "src.y4m") + " -o " + q(dir / "raw.hevc")));
+    const auto bad = invalid_fgc_payload();
+    // truncated SEI in unit 1, an invalid one in unit 3, valid ones elsewhere
+    write_bytes(dir / "bad.hevc", insert_sei(read_bytes(dir / "raw.hevc"), StreamCodec::kH265, [&](int au) {
+                    std::vector<uint8_t> p = write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc);
+                    if (au == 1) p.resize(3);
+                    if (au == 3) p = bad;
+                    AccessUnitSei s;
+                    s.prefix = {SeiMessage{kSeiPayloadFgc, p}};
+                    return s;
+                }));
+    const std::string pipeline = "filesrc location=" + q(dir / "bad.hevc") +
+                                 " ! h265parse ! filmgrainparse ! avdec_h265 ! filmgrain on-invalid=";
+    const int rc_pass = std::system(
+        gst_launch(pipeline + "passthrough ! filesink location=" + q(dir / "pass.yuv"), dir / "pass.txt", true).c_str());
+    EXPECT_EQ(rc_pass, 0) << text_of(dir / "pass.txt");
+    const std::string pass_log = text_of(dir / "pass.txt");
+    EXPECT_NE(pass_log.find("WARNING"), std::string::npos) << pass_log;
+    EXPECT_NE(pass_log.find("comp_model_value"), std::string::npos) << pass_log;
+    EXPECT_EQ(read_bytes(dir / "pass.yuv").size(), std::size_t(6 * kWidth * kHeight * 3 / 2));
+    const int rc_error = std::system(
+        gst_launch(pipeline + "error ! filesink location=" + q(dir / "err.yuv"), dir / "err.txt", true).c_str());
+    EXPECT_NE(rc_error, 0);
+    const std::string err_log = text_of(dir / "err.txt");
+    EXPECT_NE(err_log.find("ERROR"), std::string::npos) << err_log;
+    EXPECT_TRUE(err_log.find("comp_model_value") != std::string::npos || err_log.find("truncated") != std::string::npos)
+        << err_log;
+    fs::remove_all(dir);
+}
+
+TEST(GstMalformed, Afgs1PayloadWarnsOrStopsNamingTheField) {
+    const fs::path dir = fresh_test_dir("gst-malformed-afgs1");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, 4, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=4 --cpu-used=6 -o " + q(dir / "raw.ivf") + " " +
+                            q(dir / "src.y4m")));
+    write_bytes(dir / "bad.ivf", insert_av1_t35(read_bytes(dir / "raw.ivf"), [&](int tu) {
+                    std::vector<uint8_t> p = afgs1_payload_for(tu == 4 ? 0 : tu, 8);
+                    if (tu == 2) p.resize(6);  // cut inside the first set
+                    return std::vector<std::vector<uint8_t>>{p};
+                }));
+    const std::string pipeline = "filesrc location=" + q(dir / "bad.ivf") +
+                                 " ! ivfparse ! av1parse ! filmgrainparse ! av1dec ! filmgrain on-invalid=";
+    const int rc_pass = std::system(
+        gst_launch(pipeline + "passthrough ! filesink location=" + q(dir / "pass.yuv"), dir / "pass.txt", true).c_str());
+    EXPECT_EQ(rc_pass, 0) << text_of(dir / "pass.txt");
+    const std::string pass_log = text_of(dir / "pass.txt");
+    EXPECT_NE(pass_log.find("WARNING"), std::string::npos) << pass_log;
+    EXPECT_NE(pass_log.find("AFGS1 payload"), std::string::npos) << pass_log;
+    EXPECT_EQ(read_bytes(dir / "pass.yuv").size(), std::size_t(4 * kWidth * kHeight * 3 / 2));
+    const int rc_error = std::system(
+        gst_launch(pipeline + "error ! filesink location=" + q(dir / "err.yuv"), dir / "err.txt", true).c_str());
+    EXPECT_NE(rc_error, 0);
+    EXPECT_NE(text_of(dir / "err.txt").find("AFGS1 payload"), std::string::npos) << text_of(dir / "err.txt");
+    fs::remove_all(dir);
+}
