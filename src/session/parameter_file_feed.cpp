@@ -169,7 +169,15 @@ ParameterFileFeed::ParameterFileFeed(const ParameterFiles& files) : impl_(std::m
         s.payloads.emplace(files.afgs1);
         return;
     }
-    switch (detect_parameter_form(files.params, files.sei_codec_given)) {
+    // A file neither content nor name tells is read as JSON: its reader bounds what it reads
+    // and names what is wrong (a picture, /dev/zero), as `apply --params` always did.
+    ParameterForm form = ParameterForm::kJson;
+    try {
+        form = detect_parameter_form(files.params, files.sei_codec_given);
+    } catch (const Error& e) {
+        if (e.code() != ErrorCode::kInvalidArgument) throw;
+    }
+    switch (form) {
     case ParameterForm::kTable:
         s.model = FeedModel::kAv1;
         s.table = read_aom_grain_table(files.params);
