@@ -72,6 +72,10 @@ struct FrameInfo {
 struct ApplyResult {
     bool grain_applied = false;
     std::string message;  // why no grain was added, when notable (passthrough, cancel)
+    // The parameter set in force is invalid and the picture passed unchanged
+    // (passthrough_invalid); `message` names the field. Not set for pictures that simply
+    // have no grain (cancel, no AFGS1 payload or set for them, apply_grain = 0).
+    bool parameters_refused = false;
 };
 
 class FG_API Session {

@@ -10,9 +10,7 @@ namespace filmgrain::bitstream {
 
 std::optional<std::vector<uint8_t>> remove_fgc_sei(StreamCodec codec, const uint8_t* data, std::size_t size) {
     if (codec == StreamCodec::kAv1) return std::nullopt;
-    const NalCodec nc = codec == StreamCodec::kH264 ? NalCodec::kH264
-                        : codec == StreamCodec::kH265 ? NalCodec::kH265
-                                                      : NalCodec::kH266;
+    const NalCodec nc = nal_codec(codec);
     const AnnexBSplit split = split_annexb(data, size);
     std::vector<uint8_t> out;
     bool changed = false;

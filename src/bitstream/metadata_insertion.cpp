@@ -8,11 +8,6 @@
 namespace filmgrain::bitstream {
 namespace {
 
-NalCodec nal_codec(StreamCodec c) {
-    if (c == StreamCodec::kAv1) throw Error(ErrorCode::kInvalidArgument, "SEI NAL units need an H.26x stream");
-    return c == StreamCodec::kH264 ? NalCodec::kH264 : c == StreamCodec::kH265 ? NalCodec::kH265 : NalCodec::kH266;
-}
-
 std::vector<uint8_t> sei_header(StreamCodec codec, bool suffix) {
     switch (codec) {
     case StreamCodec::kH264: return {0x06};

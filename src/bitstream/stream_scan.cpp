@@ -19,10 +19,6 @@ namespace {
 
 constexpr int kH266PictureHeaderNut = 19;  // H.266 Table 5
 
-NalCodec nal_codec(StreamCodec c) {
-    return c == StreamCodec::kH264 ? NalCodec::kH264 : c == StreamCodec::kH265 ? NalCodec::kH265 : NalCodec::kH266;
-}
-
 void collect_sei(const std::vector<uint8_t>& rbsp, int header_bytes, bool suffix, StreamCodec codec, AccessUnit& au) {
     const std::vector<uint8_t> body(rbsp.begin() + header_bytes, rbsp.end());
     SeiParse sei = parse_sei_rbsp(body);
@@ -284,6 +280,11 @@ std::string lower_extension(const std::string& path) {
 }
 
 }  // namespace
+
+NalCodec nal_codec(StreamCodec c) {
+    if (c == StreamCodec::kAv1) throw Error(ErrorCode::kInvalidArgument, "AV1 has no NAL units (allowed h264, h265, h266)");
+    return c == StreamCodec::kH264 ? NalCodec::kH264 : c == StreamCodec::kH265 ? NalCodec::kH265 : NalCodec::kH266;
+}
 
 FgcCodec fgc_codec(StreamCodec c) {
     return c == StreamCodec::kH264 ? FgcCodec::kAvc : c == StreamCodec::kH265 ? FgcCodec::kHevc : FgcCodec::kVvc;

@@ -12,6 +12,7 @@
 #include "bitstream/av1_frame_header.hpp"
 #include "bitstream/av1_obu.hpp"
 #include "bitstream/av1_sequence_header.hpp"
+#include "bitstream/nal_header.hpp"
 #include "filmgrain/av1_params.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "filmgrain/fgc_params.hpp"
@@ -23,6 +24,8 @@ const char* stream_codec_name(StreamCodec c);  // "h264", "h265", "h266", "av1"
 StreamCodec parse_stream_codec(const std::string& name);  // also avc/hevc/vvc; throws Error
 // The FGC SEI syntax variant of a NAL-unit codec (H.264: repetition period; else persistence).
 FgcCodec fgc_codec(StreamCodec c);
+// The NAL unit header syntax of h264, h265 or h266; throws Error(kInvalidArgument) for av1.
+NalCodec nal_codec(StreamCodec c);
 
 // From the first bytes (IVF/OBU layouts, NAL header patterns), then the file name's
 // extension; nullopt when neither tells.

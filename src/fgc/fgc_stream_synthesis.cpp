@@ -166,6 +166,7 @@ FgcFrameResult FgcStreamSynthesis::apply(const FrameView& src, const FrameView& 
         if (!options_.passthrough_invalid) throw Error(a.error_code, a.error);
         copy_frame(src, dst);
         result.message = "film grain not applied: " + a.error;
+        result.parameters_refused = true;
         return result;
     }
     if (a.resolved->cancelled) {

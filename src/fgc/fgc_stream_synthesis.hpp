@@ -43,6 +43,7 @@ struct FgcFrameResult {
     bool grain_applied = false;
     bool sei_in_force = false;  // some SEI (valid or not) governs this picture
     std::string message;         // why no grain was added, when that is notable
+    bool parameters_refused = false;  // the set in force is invalid (passthrough_invalid)
 };
 
 class FgcStreamSynthesis {

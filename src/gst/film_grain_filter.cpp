@@ -245,7 +245,10 @@ gboolean set_caps(GstBaseTransform* t, GstCaps* incaps, GstCaps*) {
 
 gboolean sink_event(GstBaseTransform* t, GstEvent* event) {
     GstFilmGrain* self = self_of(t);
-    if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP || GST_EVENT_TYPE(event) == GST_EVENT_STREAM_START) {
+    // start() has just made the session when the first stream starts: a stream start before
+    // any picture keeps it (the parameter files are not read twice).
+    const bool fresh = self->state->session && self->state->pictures == 0;
+    if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP || (GST_EVENT_TYPE(event) == GST_EVENT_STREAM_START && !fresh)) {
         try {
             reset_stream(self);
         } catch (const std::exception& e) {
@@ -320,12 +323,10 @@ std::optional<FrameInfo> feed_session(GstFilmGrain* self, const FilmGrainMetaDat
         }
         if (!m->afgs1.empty()) {
             session.receive_afgs1_t35(m->afgs1.data(), m->afgs1.size());
-            if (m->codec == MetaCodec::kAv1 && m->matrix_coefficients != 2) fi.matrix_coefficients = m->matrix_coefficients;
+            if (m->codec == bitstream::StreamCodec::kAv1 && m->matrix_coefficients != 2) fi.matrix_coefficients = m->matrix_coefficients;
             return fi;
         }
-        const FgcCodec codec = m->codec == MetaCodec::kH264 ? FgcCodec::kAvc
-                               : m->codec == MetaCodec::kH266 ? FgcCodec::kVvc
-                                                              : FgcCodec::kHevc;
+        const FgcCodec codec = bitstream::fgc_codec(m->codec);
         for (const std::vector<uint8_t>& sei : m->fgc_sei) {
             session.receive_fgc_sei_payload(sei.data(), sei.size(), codec, fi.ids);
             st.fgc_in_force = true;
@@ -370,9 +371,7 @@ GstFlowReturn transform_ip(GstBaseTransform* t, GstBuffer* buffer) {
             throw;
         }
         gst_video_frame_unmap(&frame);
-        if (!r.message.empty() && !r.grain_applied && r.message.rfind("film grain not applied:", 0) == 0 &&
-            r.message.find("no AFGS1 payload") == std::string::npos)
-            return report_invalid(self, r.message);
+        if (r.parameters_refused) return report_invalid(self, r.message);
     } catch (const Error& e) {
         if (e.code() == ErrorCode::kInvalidArgument) {
             GST_ELEMENT_ERROR(self, STREAM, FAILED, ("%s", e.what()), (nullptr));

@@ -18,14 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "bitstream/stream_scan.hpp"
 #include "filmgrain/av1_params.hpp"
 
 namespace filmgrain::gst {
 
-enum class MetaCodec : int { kH264 = 0, kH265 = 1, kH266 = 2, kAv1 = 3 };
-
 struct FilmGrainMetaData {
-    MetaCodec codec = MetaCodec::kH265;
+    bitstream::StreamCodec codec = bitstream::StreamCodec::kH265;
     std::optional<int> poc;         // H.26x
     int idr_pic_id = 0;             // H.264
     int decode_index = 0;           // the unit's place in decode order since the last reset

@@ -80,19 +80,19 @@ void finalize(GObject* object) {
     G_OBJECT_CLASS(fg_parse_parent_class)->finalize(object);
 }
 
-std::optional<MetaCodec> codec_of_caps(GstCaps* caps) {
+std::optional<bitstream::StreamCodec> codec_of_caps(GstCaps* caps) {
     if (!caps || gst_caps_get_size(caps) == 0) return std::nullopt;
     const std::string name = gst_structure_get_name(gst_caps_get_structure(caps, 0));
-    if (name == "video/x-h264") return MetaCodec::kH264;
-    if (name == "video/x-h265") return MetaCodec::kH265;
-    if (name == "video/x-h266") return MetaCodec::kH266;
-    if (name == "video/x-av1") return MetaCodec::kAv1;
+    if (name == "video/x-h264") return bitstream::StreamCodec::kH264;
+    if (name == "video/x-h265") return bitstream::StreamCodec::kH265;
+    if (name == "video/x-h266") return bitstream::StreamCodec::kH266;
+    if (name == "video/x-av1") return bitstream::StreamCodec::kAv1;
     return std::nullopt;
 }
 
 gboolean set_caps(GstBaseTransform* t, GstCaps* incaps, GstCaps*) {
     GstFilmGrainParse* self = self_of(t);
-    const std::optional<MetaCodec> codec = codec_of_caps(incaps);
+    const std::optional<bitstream::StreamCodec> codec = codec_of_caps(incaps);
     if (!codec) return FALSE;
     // New caps of the same codec (a resolution change) keep the stream state.
     if (!*self->reader || (*self->reader)->codec() != *codec) *self->reader = std::make_unique<UnitMetadataReader>(*codec);
@@ -129,11 +129,8 @@ GstFlowReturn transform_ip(GstBaseTransform* t, GstBuffer* buffer) {
         UnitMetadataReader& reader = **self->reader;
         const FilmGrainMetaData data = reader.read(map.data, map.size);
         std::optional<std::vector<uint8_t>> stripped;
-        if (strip && !data.fgc_sei.empty() && reader.codec() != MetaCodec::kAv1)
-            stripped = bitstream::remove_fgc_sei(reader.codec() == MetaCodec::kH264   ? bitstream::StreamCodec::kH264
-                                                 : reader.codec() == MetaCodec::kH265 ? bitstream::StreamCodec::kH265
-                                                                                      : bitstream::StreamCodec::kH266,
-                                                 map.data, map.size);
+        // remove_fgc_sei leaves AV1 alone
+        if (strip && !data.fgc_sei.empty()) stripped = bitstream::remove_fgc_sei(reader.codec(), map.data, map.size);
         gst_buffer_unmap(buffer, &map);
         for (const std::string& w : data.warnings) {
             // a damaged stream repeats itself: one message per distinct text in a row

@@ -10,19 +10,6 @@
 #include "metadata/afgs1.hpp"
 
 namespace filmgrain::gst {
-namespace {
-
-bitstream::StreamCodec stream_codec(MetaCodec c) {
-    switch (c) {
-    case MetaCodec::kH264: return bitstream::StreamCodec::kH264;
-    case MetaCodec::kH265: return bitstream::StreamCodec::kH265;
-    case MetaCodec::kH266: return bitstream::StreamCodec::kH266;
-    case MetaCodec::kAv1: return bitstream::StreamCodec::kAv1;
-    }
-    return bitstream::StreamCodec::kH265;
-}
-
-}  // namespace
 
 struct UnitMetadataReader::State {
     std::optional<bitstream::NalStreamParser> nal;
@@ -57,8 +44,8 @@ struct UnitMetadataReader::State {
     }
 };
 
-UnitMetadataReader::UnitMetadataReader(MetaCodec codec) : codec_(codec), state_(std::make_unique<State>()) {
-    if (codec != MetaCodec::kAv1) state_->nal.emplace(stream_codec(codec));
+UnitMetadataReader::UnitMetadataReader(bitstream::StreamCodec codec) : codec_(codec), state_(std::make_unique<State>()) {
+    if (codec != bitstream::StreamCodec::kAv1) state_->nal.emplace(codec);
 }
 
 UnitMetadataReader::~UnitMetadataReader() = default;

@@ -13,7 +13,7 @@ namespace filmgrain::gst {
 
 class UnitMetadataReader {
 public:
-    explicit UnitMetadataReader(MetaCodec codec);
+    explicit UnitMetadataReader(bitstream::StreamCodec codec);
     ~UnitMetadataReader();
 
     // One unit; several in one buffer are read as one (their FGC SEIs and AFGS1 payloads in
@@ -23,11 +23,11 @@ public:
     // After a flush (seek): the AFGS1 stored sets are forgotten, as a decoder starting at
     // this point would not have them; parameter sets and sequence headers stay.
     void flush();
-    MetaCodec codec() const { return codec_; }
+    bitstream::StreamCodec codec() const { return codec_; }
 
 private:
     struct State;
-    MetaCodec codec_;
+    bitstream::StreamCodec codec_;
     std::unique_ptr<State> state_;
 };
 

@@ -72,34 +72,62 @@ struct ParameterFileFeed::Impl {
     // FGC: a JSON parameter file, or SEI payload files
     std::optional<ParamsFile> fgc_json;
     std::optional<io::PayloadFiles> payloads;  // sei or afgs1 files
+    // FGC SEI files that are not a pattern, parsed once at set-up: every picture receives one
+    // of these. A payload that does not parse keeps its error, thrown with the picture it
+    // arrives with (so that a caller passing invalid sets through still gets its pictures).
+    struct ParsedSei {
+        std::optional<FgcParams> params;
+        ErrorCode code = ErrorCode::kOk;
+        std::string error;
+    };
+    std::vector<ParsedSei> fixed_sei;
+
+    void parse_fixed_sei() {
+        if (payloads->is_pattern()) return;
+        const std::vector<std::vector<uint8_t>> all = payloads->all();
+        for (std::size_t k = 0; k < all.size(); k++) {
+            ParsedSei p;
+            try {
+                p.params = parse_fgc_sei_payload(all[k], files.sei_codec);
+            } catch (const Error& e) {
+                p.code = e.code();
+                p.error = "'" + payloads->name_for(int(k)) + "': " + e.what();
+            }
+            fixed_sei.push_back(std::move(p));
+        }
+    }
     // AV1: a grain table, or JSON frames
     std::optional<AomGrainTable> table;
     std::vector<Av1FrameParams> av1_frames;
 
-    std::string name() const {
-        return !files.params.empty() ? files.params : !files.sei.empty() ? files.sei[0] : files.afgs1[0];
-    }
-
     FrameInfo feed_fgc(Session& session, int k) {
         FrameInfo fi;
         fi.ids = FgcPictureIds{k, 0};
-        std::optional<FgcParams> params;
+        const FgcParams* params = nullptr;
+        std::optional<FgcParams> from_pattern;
         if (fgc_json) {
             if (!fgc_json->per_frame) {
-                params = fgc_json->frames[0].fgc;  // one object: every picture
+                if (fgc_json->frames[0].fgc) params = &*fgc_json->frames[0].fgc;  // one object: every picture
             } else if (std::size_t(k) < fgc_json->frames.size()) {
                 const FrameParams& fr = fgc_json->frames[std::size_t(k)];
                 if (fr.poc) fi.ids.poc = *fr.poc;
                 if (fr.idr_pic_id) fi.ids.idr_pic_id = *fr.idr_pic_id;
                 if (fr.pic_offset) fi.ids = FgcPictureIds{*fr.pic_offset, 0};
-                params = fr.fgc;
+                if (fr.fgc) params = &*fr.fgc;
+            }
+        } else if (!payloads->is_pattern()) {
+            const std::size_t i = payloads->one_for_every_picture() ? 0 : std::size_t(k);
+            if (i < fixed_sei.size()) {
+                if (!fixed_sei[i].params) throw Error(fixed_sei[i].code, fixed_sei[i].error);
+                params = &*fixed_sei[i].params;
             }
         } else if (const auto bytes = payloads->for_picture(k)) {
             try {
-                params = parse_fgc_sei_payload(*bytes, files.sei_codec);
+                from_pattern = parse_fgc_sei_payload(*bytes, files.sei_codec);
             } catch (const Error& e) {
                 throw Error(e.code(), "'" + payloads->name_for(k) + "': " + e.what());
             }
+            params = &*from_pattern;
         }
         if (params) session.receive_fgc_params(*params, files.sei_codec);
         return fi;
@@ -162,6 +190,7 @@ ParameterFileFeed::ParameterFileFeed(const ParameterFiles& files) : impl_(std::m
         throw Error(ErrorCode::kInvalidArgument, "give exactly one of a parameter file, SEI payload files or AFGS1 payload files");
     if (!files.sei.empty()) {
         s.payloads.emplace(files.sei);
+        s.parse_fixed_sei();
         return;
     }
     if (!files.afgs1.empty()) {
@@ -182,7 +211,10 @@ ParameterFileFeed::ParameterFileFeed(const ParameterFiles& files) : impl_(std::m
         s.model = FeedModel::kAv1;
         s.table = read_aom_grain_table(files.params);
         return;
-    case ParameterForm::kSei: s.payloads.emplace(std::vector<std::string>{files.params}); return;
+    case ParameterForm::kSei:
+        s.payloads.emplace(std::vector<std::string>{files.params});
+        s.parse_fixed_sei();
+        return;
     case ParameterForm::kAfgs1:
         s.model = FeedModel::kAfgs1;
         s.payloads.emplace(std::vector<std::string>{files.params});

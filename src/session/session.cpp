@@ -153,6 +153,7 @@ struct Session::Impl {
             FgcFrameResult fr = fgc->apply(src, dst, ids);
             r.grain_applied = fr.grain_applied;
             r.message = fr.message;
+            r.parameters_refused = fr.parameters_refused;
             return r;
         }
         if (info.seed)
@@ -178,6 +179,7 @@ struct Session::Impl {
         if (!vfgs_invalid.empty()) {
             vfgs->pass_through(src, dst);
             r.message = "film grain not applied: " + vfgs_invalid;
+            r.parameters_refused = true;
             return r;
         }
         try {
@@ -186,6 +188,7 @@ struct Session::Impl {
             if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
             vfgs->pass_through(src, dst);
             r.message = std::string("film grain not applied: ") + e.what();
+            r.parameters_refused = true;
             return r;
         }
         r.grain_applied = !vfgs_cancelled;
@@ -215,6 +218,7 @@ struct Session::Impl {
             if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
             copy_frame(src, dst);
             r.message = std::string("film grain not applied: ") + e.what();
+            r.parameters_refused = true;
             return r;
         }
         r.grain_applied = p.apply_grain != 0 && (p.num_y_points > 0 || p.chroma_scaling_from_luma ||

@@ -27,38 +27,6 @@ namespace {
 constexpr int kWidth = 96, kHeight = 64, kFrames = 6;
 
 
-// A set for frame k: values depend on k so each frame's parameters are recognisable.
-Av1FilmGrainParams params_for(int k) {
-    Av1FilmGrainParams p;
-    p.apply_grain = 1;
-    p.grain_seed = 1000 + 37 * k;
-    p.num_y_points = 2;
-    p.point_y_value[0] = 0;
-    p.point_y_scaling[0] = 40 + 8 * k;
-    p.point_y_value[1] = 255;
-    p.point_y_scaling[1] = 90 - 5 * k;
-    p.num_cb_points = 1;
-    p.point_cb_value[0] = 128;
-    p.point_cb_scaling[0] = 30 + k;
-    p.num_cr_points = 2;
-    p.point_cr_value[0] = 20;
-    p.point_cr_scaling[0] = 25;
-    p.point_cr_value[1] = 230;
-    p.point_cr_scaling[1] = 45 + 2 * k;
-    p.grain_scaling_minus_8 = k % 4;
-    p.ar_coeff_lag = 1 + k % 3;
-    for (int i = 0; i < p.num_pos_luma(); i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i * 5 + k) % 17 - 8;
-    for (int i = 0; i < p.num_pos_chroma(); i++) {
-        p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i * 3 + k) % 11 - 5;
-        p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i * 7 + k) % 13 + 6;
-    }
-    p.ar_coeff_shift_minus_6 = k % 2;
-    p.cb_mult = 128 + k;
-    p.cr_offset = 250 + k;
-    p.overlap_flag = k % 2;
-    return p;
-}
-
 Afgs1SetTarget target(int width, int height, int bit_depth) {
     Afgs1SetTarget t;
     t.apply_horz_resolution = width;
@@ -69,7 +37,7 @@ Afgs1SetTarget target(int width, int height, int bit_depth) {
 }
 
 // What each temporal unit carries, and which parameters its frame must get:
-//   0, 1, 2, 5: two sets, one for the coded picture (index 0, params_for(k)) and one for a
+//   0, 1, 2, 5: two sets, one for the coded picture (index 0, av1_params_for(k)) and one for a
 //               half-size picture (index 1), in alternating order;
 //   3: set 0 again with update_grain_flag = 0 and a new seed (the stored set of TU 2);
 //   4: no payload (no grain).
@@ -86,23 +54,23 @@ Fixture make_fixture(int bit_depth) {
         if (k == 3) {
             Afgs1ParamSet reseed;
             reseed.film_grain_param_set_idx = 0;
-            reseed.params = params_for(2);
+            reseed.params = av1_params_for(2);
             reseed.params.update_grain = 0;
             reseed.params.grain_seed = 4321;
             reseed.target = target(kWidth, kHeight, bit_depth);
             pl.sets = {reseed};
-            want = params_for(2);
+            want = av1_params_for(2);
             want.grain_seed = 4321;
         } else if (k != 4) {
             Afgs1ParamSet full, half;
             full.film_grain_param_set_idx = 0;
-            full.params = params_for(k);
+            full.params = av1_params_for(k);
             full.target = target(kWidth, kHeight, bit_depth);
             half.film_grain_param_set_idx = 1;
-            half.params = params_for(k + 10);
+            half.params = av1_params_for(k + 10);
             half.target = target(kWidth / 2, kHeight / 2, bit_depth);
             pl.sets = k % 2 ? std::vector<Afgs1ParamSet>{half, full} : std::vector<Afgs1ParamSet>{full, half};
-            want = params_for(k);
+            want = av1_params_for(k);
         }
         f.payloads.push_back(pl.sets.empty() ? std::vector<uint8_t>{} : write_afgs1(pl));
         f.expected.push_back(want);
@@ -259,7 +227,7 @@ TEST_P(Afgs1InH26x, DecodeEqualsApplyWithThePayloadsInOutputOrder) {
                "--no-open-gop --input " + q(dir / "src.y4m") + " -o " + q(dir / "raw.es")
              : "x264 --quiet --preset ultrafast --bframes 2 --keyint 8 --min-keyint 8 --no-scenecut -o " +
                    q(dir / "raw.es") + " " + q(dir / "src.y4m") + " 2>/dev/null"));
-    // access unit k (decode order): one set for the picture, with params_for(k); unit 3: none
+    // access unit k (decode order): one set for the picture, with av1_params_for(k); unit 3: none
     std::vector<std::vector<uint8_t>> payloads;
     for (int k = 0; k < frames; k++) {
         if (k == 3) {
@@ -268,7 +236,7 @@ TEST_P(Afgs1InH26x, DecodeEqualsApplyWithThePayloadsInOutputOrder) {
         }
         Afgs1Payload pl;
         Afgs1ParamSet set;
-        set.params = params_for(k);
+        set.params = av1_params_for(k);
         set.target = target(w, h, 8);
         pl.sets = {set};
         payloads.push_back(write_afgs1(pl));

@@ -84,17 +84,11 @@ INSTANTIATE_TEST_SUITE_P(AomencFilmGrainTests, DecodeAv1,
 
 TEST(DecodeH265, EqualsApplyWithExtractedParams) {
     const fs::path dir = fresh_test_dir("decode-h265");
-    write_synthetic_y4m(dir / "src.y4m", 160, 128, 12, 8);
-    ASSERT_TRUE(run_or_fail("x265 --log-level error --preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 "
-                            "--no-scenecut --no-open-gop --input " + q(dir / "src.y4m") + " -o " + q(dir / "raw.hevc")));
+    const auto raw = encode_synthetic_clip(dir, StreamCodec::kH265, 160, 128, 12, 8);
+    ASSERT_FALSE(raw.empty());
     // a different FGC SEI in every access unit, so a picture matched with the wrong SEI or
     // seeded with the wrong POC shows
-    const auto stream = insert_sei(read_bytes(dir / "raw.hevc"), StreamCodec::kH265, [](int au) {
-        AccessUnitSei s;
-        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc)}};
-        return s;
-    });
-    write_bytes(dir / "fgc.hevc", stream);
+    write_bytes(dir / "fgc.hevc", with_fgc_sei_per_access_unit(raw, StreamCodec::kH265));
     for (const char* flavour : {"rdd5", "vtm"}) {
         SCOPED_TRACE(flavour);
         const std::string f = std::string(" --flavour ") + flavour + " ";
@@ -124,15 +118,9 @@ TEST(DecodeH265, EqualsApplyWithExtractedParams) {
 // flavour compared.
 TEST(DecodeH264, Rdd5EqualsApplyWithExtractedParamsAcrossTwoIdrs) {
     const fs::path dir = fresh_test_dir("decode-h264");
-    write_synthetic_y4m(dir / "src.y4m", 160, 128, 12, 8);
-    ASSERT_TRUE(run_or_fail("x264 --quiet --preset ultrafast --bframes 2 --keyint 6 --min-keyint 6 --no-scenecut -o " +
-                            q(dir / "raw.264") + " " + q(dir / "src.y4m") + " 2>/dev/null"));
-    const auto stream = insert_sei(read_bytes(dir / "raw.264"), StreamCodec::kH264, [](int au) {
-        AccessUnitSei s;
-        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kAvc)}};
-        return s;
-    });
-    write_bytes(dir / "fgc.264", stream);
+    const auto raw = encode_synthetic_clip(dir, StreamCodec::kH264, 160, 128, 12, 8);
+    ASSERT_FALSE(raw.empty());
+    write_bytes(dir / "fgc.264", with_fgc_sei_per_access_unit(raw, StreamCodec::kH264));
     ASSERT_TRUE(run_or_fail(tool() + " decode -q --flavour rdd5 " + q(dir / "fgc.264") + " -o " + q(dir / "decoded.yuv")));
     ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(dir / "fgc.264") + " -o " + q(dir / "clean.yuv")));
     ASSERT_TRUE(run_or_fail(tool() + " params extract -q " + q(dir / "fgc.264") + " -o " + q(dir / "p.json")));

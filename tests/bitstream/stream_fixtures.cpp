@@ -7,8 +7,10 @@
 #include <iterator>
 
 #include "conformance_case.hpp"
+#include "bitstream/metadata_insertion.hpp"
 #include "core/frame_buffer.hpp"
 #include "io/video_file.hpp"
+#include "metadata/fgc_sei.hpp"
 
 namespace filmgrain::test_support {
 
@@ -94,6 +96,66 @@ FgcParams fgc_params_for(int k) {
     all.comp_model_value = {30 + k % 4, 0, 0, 0, 0, 0};
     cb.intervals = {all};
     return p;
+}
+
+Av1FilmGrainParams av1_params_for(int k) {
+    Av1FilmGrainParams p;
+    p.apply_grain = 1;
+    p.grain_seed = 1000 + 37 * k;
+    p.num_y_points = 2;
+    p.point_y_value[0] = 0;
+    p.point_y_scaling[0] = 40 + 8 * k;
+    p.point_y_value[1] = 255;
+    p.point_y_scaling[1] = 90 - 5 * k;
+    p.num_cb_points = 1;
+    p.point_cb_value[0] = 128;
+    p.point_cb_scaling[0] = 30 + k;
+    p.num_cr_points = 2;
+    p.point_cr_value[0] = 20;
+    p.point_cr_scaling[0] = 25;
+    p.point_cr_value[1] = 230;
+    p.point_cr_scaling[1] = 45 + 2 * k;
+    p.grain_scaling_minus_8 = k % 4;
+    p.ar_coeff_lag = 1 + k % 3;
+    for (int i = 0; i < p.num_pos_luma(); i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i * 5 + k) % 17 - 8;
+    for (int i = 0; i < p.num_pos_chroma(); i++) {
+        p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i * 3 + k) % 11 - 5;
+        p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i * 7 + k) % 13 + 6;
+    }
+    p.ar_coeff_shift_minus_6 = k % 2;
+    p.cb_mult = 128 + k;
+    p.cr_offset = 250 + k;
+    p.overlap_flag = k % 2;
+    return p;
+}
+
+std::vector<uint8_t> encode_synthetic_clip(const fs::path& dir, bitstream::StreamCodec codec, int width, int height,
+                                           int frames, int bit_depth) {
+    write_synthetic_y4m(dir / "src.y4m", width, height, frames, bit_depth);
+    const fs::path out = dir / "raw.bit";
+    if (codec == bitstream::StreamCodec::kH264) {
+        if (!run_or_fail("x264 --quiet --preset ultrafast --bframes 2 --keyint 6 --min-keyint 6 --no-scenecut -o " +
+                         q(out) + " " + q(dir / "src.y4m") + " 2>/dev/null"))
+            return {};
+    } else {
+        const std::string depth = bit_depth > 8 ? " --output-depth 10 --profile main10" : "";
+        if (!run_or_fail("x265 --log-level error --preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 "
+                         "--no-scenecut --no-open-gop" + depth + " --input " + q(dir / "src.y4m") + " -o " + q(out)))
+            return {};
+    }
+    return read_bytes(out);
+}
+
+std::vector<uint8_t> with_fgc_sei_per_access_unit(const std::vector<uint8_t>& stream, bitstream::StreamCodec codec,
+                                                  const std::function<std::vector<uint8_t>(int)>& payload_for) {
+    return bitstream::insert_sei(stream, codec, [&](int au) {
+        bitstream::AccessUnitSei s;
+        s.prefix = {bitstream::SeiMessage{bitstream::kSeiPayloadFgc,
+                                          payload_for ? payload_for(au)
+                                                      : write_fgc_sei_payload(fgc_params_for(au),
+                                                                              bitstream::fgc_codec(codec))}};
+        return s;
+    });
 }
 
 }  // namespace filmgrain::test_support

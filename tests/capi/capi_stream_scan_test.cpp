@@ -74,13 +74,13 @@ TEST(CapiStreamScan, FgcSeiOfEveryHevcAccessUnitInOutputOrder) {
             ASSERT_EQ(fg_fgc_params_from_sei(payload, size, FG_CODEC_HEVC, &p, message, sizeof message), FG_OK)
                 << message;
             // the SEI the stream maker wrote from fgc.json
-            EXPECT_EQ(p.log2_scale_factor, sei.at("log2_scale_factor").get<int>());
+            EXPECT_EQ(p.log2_scale_factor, sei.at("log2_scale_factor").get<long long>());
             for (std::size_t comp = 0; comp < 3; comp++) {
-                EXPECT_EQ(p.comp_model_present_flag[comp], sei.at("comp_model_present_flag").at(comp).get<int>());
+                EXPECT_EQ(p.comp_model_present_flag[comp], sei.at("comp_model_present_flag").at(comp).get<long long>());
                 if (!p.comp_model_present_flag[comp]) continue;
                 EXPECT_EQ(p.num_intensity_intervals_minus1[comp],
-                          sei.at("num_intensity_intervals_minus1").at(comp).get<int>());
-                EXPECT_EQ(p.comp_model_value[comp][0][0], sei.at("comp_model_value").at(comp).at(0).at(0).get<int>());
+                          sei.at("num_intensity_intervals_minus1").at(comp).get<long long>());
+                EXPECT_EQ(p.comp_model_value[comp][0][0], sei.at("comp_model_value").at(comp).at(0).at(0).get<long long>());
             }
         }
         reordered += !in_decode_order;
@@ -104,13 +104,13 @@ TEST(CapiStreamScan, Av1FrameHeaderGrainAsTheCaseRecordsIt) {
         fg_av1_grain_init(&g);
         ASSERT_EQ(fg_stream_scan_av1_grain(scan.get(), k, &g), FG_OK);
         const nlohmann::json& want = c.frame_info(k).at("params").at("av1");
-        EXPECT_EQ(g.apply_grain, want.at("apply_grain").get<int>()) << "frame " << k;
+        EXPECT_EQ(g.apply_grain, want.at("apply_grain").get<long long>()) << "frame " << k;
         if (!g.apply_grain) continue;
-        EXPECT_EQ(int(g.seed), want.at("grain_seed").get<int>()) << "frame " << k;
-        ASSERT_EQ(g.num_y_points, want.at("num_y_points").get<int>());
+        EXPECT_EQ(int(g.seed), want.at("grain_seed").get<long long>()) << "frame " << k;
+        ASSERT_EQ(g.num_y_points, want.at("num_y_points").get<long long>());
         for (int i = 0; i < g.num_y_points; i++) {
-            EXPECT_EQ(g.y_points[i][0], want.at("point_y_value").at(std::size_t(i)).get<int>());
-            EXPECT_EQ(g.y_points[i][1], want.at("point_y_scaling").at(std::size_t(i)).get<int>());
+            EXPECT_EQ(g.y_points[i][0], want.at("point_y_value").at(std::size_t(i)).get<long long>());
+            EXPECT_EQ(g.y_points[i][1], want.at("point_y_scaling").at(std::size_t(i)).get<long long>());
         }
         // and it is what a context takes
         fg_context* ctx = nullptr;

@@ -38,17 +38,9 @@ std::string text_of(const fs::path& p) {
 // x265 with B-frames (decode order differs from output order) and a different FGC SEI in
 // every access unit: a picture matched with the wrong SEI or seeded with the wrong POC shows.
 fs::path make_h265_fgc_stream(const fs::path& dir, int bit_depth) {
-    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, bit_depth);
-    const std::string depth = bit_depth > 8 ? " --output-depth 10 --profile main10" : "";
-    EXPECT_TRUE(run_or_fail("x265 --log-level error --preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 "
-                            "--no-scenecut --no-open-gop" + depth + " --input " + q(dir / "src.y4m") + " -o " +
-                            q(dir / "raw.hevc")));
-    const auto stream = insert_sei(read_bytes(dir / "raw.hevc"), StreamCodec::kH265, [](int au) {
-        AccessUnitSei s;
-        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc)}};
-        return s;
-    });
-    write_bytes(dir / "fgc.hevc", stream);
+    const auto raw = encode_synthetic_clip(dir, StreamCodec::kH265, kWidth, kHeight, kFrames, bit_depth);
+    EXPECT_FALSE(raw.empty());
+    write_bytes(dir / "fgc.hevc", with_fgc_sei_per_access_unit(raw, StreamCodec::kH265));
     return dir / "fgc.hevc";
 }
 
@@ -130,15 +122,9 @@ INSTANTIATE_TEST_SUITE_P(X265BFrames, GstH265Fgc,
 // term (`filmgrain decode` has it from FFmpeg's exported seed, the element from the meta).
 TEST(GstH264Fgc, Rdd5EqualsDecodeAcrossTwoIdrs) {
     const fs::path dir = fresh_test_dir("gst-h264");
-    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, 8);
-    ASSERT_TRUE(run_or_fail("x264 --quiet --preset ultrafast --bframes 2 --keyint 6 --min-keyint 6 --no-scenecut -o " +
-                            q(dir / "raw.264") + " " + q(dir / "src.y4m") + " 2>/dev/null"));
-    const auto stream = insert_sei(read_bytes(dir / "raw.264"), StreamCodec::kH264, [](int au) {
-        AccessUnitSei s;
-        s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kAvc)}};
-        return s;
-    });
-    write_bytes(dir / "fgc.264", stream);
+    const auto raw = encode_synthetic_clip(dir, StreamCodec::kH264, kWidth, kHeight, kFrames, 8);
+    ASSERT_FALSE(raw.empty());
+    write_bytes(dir / "fgc.264", with_fgc_sei_per_access_unit(raw, StreamCodec::kH264));
     ASSERT_TRUE(run_or_fail(tool() + " decode -q --flavour rdd5 " + q(dir / "fgc.264") + " --format yuv -o " +
                             q(dir / "decoded.yuv")));
     ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(dir / "fgc.264") +
@@ -152,33 +138,6 @@ TEST(GstH264Fgc, Rdd5EqualsDecodeAcrossTwoIdrs) {
 }
 
 namespace {
-
-Av1FilmGrainParams av1_params_for(int k) {
-    Av1FilmGrainParams p;
-    p.apply_grain = 1;
-    p.grain_seed = 2000 + 41 * k;
-    p.num_y_points = 2;
-    p.point_y_value[0] = 0;
-    p.point_y_scaling[0] = 50 + 6 * k;
-    p.point_y_value[1] = 255;
-    p.point_y_scaling[1] = 80 - 3 * k;
-    p.num_cb_points = 1;
-    p.point_cb_value[0] = 128;
-    p.point_cb_scaling[0] = 30 + k;
-    p.num_cr_points = 1;
-    p.point_cr_value[0] = 100;
-    p.point_cr_scaling[0] = 35;
-    p.ar_coeff_lag = 1 + k % 3;
-    for (int i = 0; i < p.num_pos_luma(); i++) p.ar_coeffs_y_plus_128[std::size_t(i)] = 128 + (i * 5 + k) % 17 - 8;
-    for (int i = 0; i < p.num_pos_chroma(); i++) {
-        p.ar_coeffs_cb_plus_128[std::size_t(i)] = 128 + (i * 3 + k) % 11 - 5;
-        p.ar_coeffs_cr_plus_128[std::size_t(i)] = 128 - (i * 7 + k) % 13 + 6;
-    }
-    p.cb_mult = 128 + k;
-    p.cr_offset = 250 + k;
-    p.overlap_flag = k % 2;
-    return p;
-}
 
 // Per temporal unit: a set for the picture and one for a half-size picture (to be ignored),
 // a reseed of the stored set (update_grain_flag = 0) in unit 3, no payload in unit 4.
@@ -251,6 +210,47 @@ TEST(GstAv1Afgs1, EqualsDecode) {
     }
 }
 
+// Pictures that simply get no grain are not errors, even with on-invalid=error (the default):
+// a set with apply_grain_flag = 0, and a payload whose only set is for a larger picture (a
+// smaller one would be chosen: the largest set not exceeding the picture).
+TEST(GstAv1Afgs1, PicturesWithoutGrainAreNotInvalid) {
+    const fs::path dir = fresh_test_dir("gst-av1-afgs1-nograin");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, 4, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=4 --cpu-used=6 -o " + q(dir / "raw.ivf") + " " +
+                            q(dir / "src.y4m")));
+    write_bytes(dir / "s.ivf", insert_av1_t35(read_bytes(dir / "raw.ivf"), [&](int tu) {
+                    Afgs1ParamSet set;
+                    set.params = av1_params_for(tu);
+                    set.target.apply_horz_resolution = kWidth;
+                    set.target.apply_vert_resolution = kHeight;
+                    if (tu == 1) set.params.apply_grain = 0;
+                    if (tu == 2) {
+                        set.target.apply_horz_resolution = kWidth * 2;
+                        set.target.apply_vert_resolution = kHeight * 2;
+                    }
+                    Afgs1Payload pl;
+                    pl.sets = {set};
+                    return std::vector<std::vector<uint8_t>>{write_afgs1(pl)};
+                }));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "s.ivf") + " --format yuv -o " + q(dir / "decoded.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --no-grain " + q(dir / "s.ivf") + " --format yuv -o " +
+                            q(dir / "clean.yuv")));
+    ASSERT_TRUE(run_or_fail(gst_launch("filesrc location=" + q(dir / "s.ivf") +
+                                           " ! ivfparse ! av1parse ! filmgrainparse ! av1dec ! filmgrain on-invalid=error ! "
+                                           "filesink location=" + q(dir / "gst.yuv"),
+                                       dir / "log.txt")));
+    const auto decoded = read_bytes(dir / "decoded.yuv"), clean = read_bytes(dir / "clean.yuv");
+    const std::size_t frame = std::size_t(kWidth * kHeight * 3 / 2);
+    ASSERT_EQ(decoded.size(), 4 * frame);
+    EXPECT_TRUE(read_bytes(dir / "gst.yuv") == decoded);
+    for (std::size_t k = 0; k < 4; k++)
+        EXPECT_EQ(std::equal(decoded.begin() + long(k * frame), decoded.begin() + long((k + 1) * frame),
+                             clean.begin() + long(k * frame)),
+                  k == 1 || k == 2)
+            << "frame " << k;
+    fs::remove_all(dir);
+}
+
 // H.265 with AFGS1 in T.35 SEI and B-frames: the conformance case made with FFmpeg 7.1.
 TEST(GstH265Afgs1, ConformanceBFramesCaseEqualsDecode) {
     const fs::path dir = fresh_test_dir("gst-h265-afgs1");
@@ -306,18 +306,15 @@ std::vector<uint8_t> invalid_fgc_payload() {
 // field; error stops it with a message naming the field.
 TEST(GstMalformed, FgcSeiWarnsOrStopsNamingTheField) {
     const fs::path dir = fresh_test_dir("gst-malformed-fgc");
-    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, 6, 8);
-    ASSERT_TRUE(run_or_fail("x265 --log-level error --preset ultrafast --bframes 2 --keyint 6 --input " +
-                            q(dir / "src.y4m") + " -o " + q(dir / "raw.hevc")));
+    const auto raw = encode_synthetic_clip(dir, StreamCodec::kH265, kWidth, kHeight, 6, 8);
+    ASSERT_FALSE(raw.empty());
     const auto bad = invalid_fgc_payload();
     // truncated SEI in unit 1, an invalid one in unit 3, valid ones elsewhere
-    write_bytes(dir / "bad.hevc", insert_sei(read_bytes(dir / "raw.hevc"), StreamCodec::kH265, [&](int au) {
+    write_bytes(dir / "bad.hevc", with_fgc_sei_per_access_unit(raw, StreamCodec::kH265, [&](int au) {
                     std::vector<uint8_t> p = write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc);
                     if (au == 1) p.resize(3);
                     if (au == 3) p = bad;
-                    AccessUnitSei s;
-                    s.prefix = {SeiMessage{kSeiPayloadFgc, p}};
-                    return s;
+                    return p;
                 }));
     const std::string pipeline = "filesrc location=" + q(dir / "bad.hevc") +
                                  " ! h265parse ! filmgrainparse ! avdec_h265 ! filmgrain on-invalid=";

@@ -210,3 +210,42 @@ TEST(Session, OptionsOutsideTheirRangeAreRefusedNamingTheField) {
     o.threads = 257;
     EXPECT_NE(error_of(o).find("threads = 257 is out of range (allowed 0..256)"), std::string::npos);
 }
+
+// ApplyResult::parameters_refused tells an invalid set passed through from a picture that
+// simply has no grain: what the GStreamer element's on-invalid acts on.
+TEST(Session, ParametersRefusedOnlyForInvalidSetsPassedThrough) {
+    const PixelFormat fmt{ChromaFormat::k420, 8};
+    // VFGS refuses pictures narrower than 129 or lower than 128
+    FrameBuffer picture = noise_picture(192, 128, fmt, 3);
+    FrameBuffer out(192, 128, fmt);
+    SessionOptions o;
+    o.passthrough_invalid = true;
+    for (FgcFlavour flavour : {FgcFlavour::kRdd5, FgcFlavour::kVfgs}) {
+        SCOPED_TRACE(fgc_flavour_name(flavour));
+        o.flavour = flavour;
+        Session session(o);
+        FgcParams bad = fgc_params();
+        bad.comp[0].intervals[0].comp_model_value[0] = 5000;  // far beyond RDD 5's range
+        session.receive_fgc_params(bad, FgcCodec::kHevc);
+        const ApplyResult refused = session.apply(picture.view(), out.view());
+        EXPECT_FALSE(refused.grain_applied);
+        EXPECT_TRUE(refused.parameters_refused);
+        EXPECT_NE(refused.message.find("comp_model_value"), std::string::npos) << refused.message;
+        FgcParams cancel;
+        cancel.film_grain_characteristics_cancel_flag = true;
+        session.receive_fgc_params(cancel, FgcCodec::kHevc);
+        const ApplyResult cancelled = session.apply(picture.view(), out.view());
+        EXPECT_FALSE(cancelled.grain_applied);
+        EXPECT_FALSE(cancelled.parameters_refused) << cancelled.message;
+    }
+    // AV1: an invalid set is refused, apply_grain = 0 is not
+    Session av1(o);
+    Av1FilmGrainParams bad = av1_params();
+    bad.point_y_value = {200, 100};  // decreasing
+    av1.receive_av1_params(bad);
+    EXPECT_TRUE(av1.apply(picture.view(), out.view()).parameters_refused);
+    Av1FilmGrainParams off = av1_params();
+    off.apply_grain = 0;
+    av1.receive_av1_params(off);
+    EXPECT_FALSE(av1.apply(picture.view(), out.view()).parameters_refused);
+}
