@@ -9,6 +9,7 @@
 #include "cli_common.hpp"
 #include "filmgrain/error.hpp"
 #include "grain_outputs.hpp"
+#include "analysis_job.hpp"
 
 #ifdef FILMGRAIN_HAVE_ANALYSIS
 #include <opencv2/core.hpp>
@@ -26,19 +27,7 @@ namespace filmgrain::cli {
 #ifdef FILMGRAIN_HAVE_ANALYSIS
 namespace {
 
-struct AnalyzeOptions {
-    std::string input, denoised, model, output, table, sei, report, afgs1;
-    std::string sei_codec = "hevc";
-    std::string flavour = "rdd5";
-    int frame_step = 0;
-    int max_frames = 32;
-    int temporal_radius = 2;
-    double accuracy = 0.05;
-    int max_lag = 3;
-    bool spatial = false;
-    bool quiet = false;
-    RawVideoOptions raw;
-};
+
 
 // Frames in a regular file, from its size (Y4M: each frame has a short header); -1 if unknown.
 long long estimate_frame_count(const std::string& path, const VideoInfo& info) {
@@ -74,7 +63,7 @@ cv::Mat centre_crop(const cv::Mat& m, int size) {
     return m(cv::Rect((m.cols - w) / 2, (m.rows - h) / 2, w, h)).clone();
 }
 
-int run_analyze(const AnalyzeOptions& o) {
+void check_analyze_options(const AnalyzeOptions& o) {
     if (o.model != "fgc" && o.model != "av1")
         throw Error(ErrorCode::kInvalidArgument, "--model '" + o.model + "' is not known (allowed fgc, av1)");
     const bool fgc = o.model == "fgc";
@@ -84,21 +73,19 @@ int run_analyze(const AnalyzeOptions& o) {
     const FgcFlavour flavour = parse_flavour(o.flavour);
     if (flavour == FgcFlavour::kVfgs)
         throw Error(ErrorCode::kInvalidArgument, "--flavour vfgs is not supported by analyze (allowed rdd5, vtm)");
-    const FgcCodec codec = parse_fgc_codec(o.sei_codec);
+    parse_fgc_codec(o.sei_codec);
     if (o.max_frames < 1) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--max-frames", o.max_frames, 1, 1 << 30));
     if (o.frame_step < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--frame-step", o.frame_step, 0, 1 << 30));
     if (!(o.accuracy > 0 && o.accuracy < 1))
         throw Error(ErrorCode::kInvalidArgument, "--accuracy " + std::to_string(o.accuracy) + " is out of range (allowed 0..1, exclusive)");
     if (o.max_lag < 0 || o.max_lag > 3) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--max-lag", o.max_lag, 0, 3));
 
-    VideoReader reader(o.input, o.raw.to_info());
-    const VideoInfo info = reader.info();
-    std::unique_ptr<VideoReader> dreader;
-    if (!o.denoised.empty()) dreader = std::make_unique<VideoReader>(o.denoised, o.raw.to_info());
-    const long long total = estimate_frame_count(o.input, info);
+}
+
+analysis::AnalysisOptions analysis_options_for(const AnalyzeOptions& o, long long total) {
     analysis::AnalysisOptions ao;
-    ao.model = fgc ? analysis::GrainModel::kFgc : analysis::GrainModel::kAv1;
-    ao.flavour = flavour;
+    ao.model = o.model == "fgc" ? analysis::GrainModel::kFgc : analysis::GrainModel::kAv1;
+    ao.flavour = parse_flavour(o.flavour);
     // A subset of the pictures: grain statistics are stationary over a shot, and the
     // observations of ~32 pictures already pool thousands of blocks.
     ao.frame_step = o.frame_step > 0 ? o.frame_step : total > 0 ? int(std::max<long long>(1, (total + o.max_frames - 1) / o.max_frames)) : 8;
@@ -106,6 +93,57 @@ int run_analyze(const AnalyzeOptions& o) {
     ao.spatial_only = o.spatial;
     ao.accuracy = o.accuracy;
     ao.max_ar_lag = o.max_lag;
+    return ao;
+}
+
+}  // namespace
+
+AnalysisJob::AnalysisJob(const AnalyzeOptions& options) : o_(options) {
+    check_analyze_options(o_);
+    VideoReader reader(o_.input, o_.raw.to_info());
+    info_ = reader.info();
+    total_ = estimate_frame_count(o_.input, info_);
+    ao_ = analysis_options_for(o_, total_);
+}
+
+std::vector<analysis::PictureObservations> AnalysisJob::observe_range(int from, int to) const {
+    if (from < 0 || to < from)
+        throw Error(ErrorCode::kInvalidArgument, "picture range [" + std::to_string(from) + ", " + std::to_string(to) +
+                                                     ") is not a range of pictures");
+    analysis::AnalysisOptions ao = ao_;
+    const int radius = o_.denoised.empty() && !o_.spatial ? o_.temporal_radius : 0;
+    ao.first_index = std::max(0, from - radius);
+    ao.analyse_from = from;
+    ao.analyse_to = to;
+    ao.keep_picture_observations = true;
+    VideoReader reader(o_.input, o_.raw.to_info());
+    std::unique_ptr<VideoReader> dreader;
+    if (!o_.denoised.empty()) dreader = std::make_unique<VideoReader>(o_.denoised, o_.raw.to_info());
+    if (!reader.skip_frames(ao.first_index) || (dreader && !dreader->skip_frames(ao.first_index)))
+        return {};
+    analysis::GrainAnalyzer analyzer(ao, info_.format, info_.width, info_.height);
+    FrameBuffer in, den;
+    for (int k = ao.first_index; k < to + radius && reader.read(in); k++) {
+        const FrameBuffer* dptr = nullptr;
+        if (dreader) {
+            if (!dreader->read(den))
+                throw Error(ErrorCode::kIo, "--denoised '" + o_.denoised + "' ends at frame " + std::to_string(k) +
+                                                " before the input");
+            dptr = &den;
+        }
+        analyzer.add_frame(in, dptr);
+    }
+    analyzer.finish();
+    return analyzer.picture_observations();
+}
+
+int AnalysisJob::run() const {
+    const AnalyzeOptions& o = o_;
+    const analysis::AnalysisOptions& ao = ao_;
+    const long long total = total_;
+    VideoReader reader(o.input, o.raw.to_info());
+    std::unique_ptr<VideoReader> dreader;
+    if (!o.denoised.empty()) dreader = std::make_unique<VideoReader>(o.denoised, o.raw.to_info());
     std::unique_ptr<analysis::GrainAnalyzer> analyzer;
     FrameBuffer in, den;
     int k = 0;
@@ -131,6 +169,28 @@ int run_analyze(const AnalyzeOptions& o) {
     if (k == 0) throw Error(ErrorCode::kIo, "input '" + o.input + "' holds no frame");
     analyzer->finish();
     if (!o.quiet && k >= 25) std::fprintf(stderr, "\n");
+    write_outputs(*analyzer, k);
+    return 0;
+}
+
+void AnalysisJob::write_outputs_from(const std::vector<analysis::PictureObservations>& pictures, int frames) const {
+    if (!o_.report.empty())
+        throw Error(ErrorCode::kInvalidArgument,
+                    "--report needs the analysed pictures themselves: run the analysis in one process for a report");
+    if (frames <= 0) throw Error(ErrorCode::kIo, "input '" + o_.input + "' holds no frame");
+    analysis::GrainAnalyzer analyzer(ao_, info_.format, info_.width, info_.height);
+    for (const auto& p : pictures) analyzer.merge_picture(p);
+    write_outputs(analyzer, frames);
+}
+
+void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int k) const {
+    const AnalyzeOptions& o = o_;
+    const VideoInfo& info = info_;
+    const analysis::AnalysisOptions& ao = ao_;
+    const analysis::GrainAnalyzer* analyzer = &analyzer_ref;
+    const bool fgc = o.model == "fgc";
+    const FgcFlavour flavour = parse_flavour(o.flavour);
+    const FgcCodec codec = parse_fgc_codec(o.sei_codec);
 
     const PixelFormat fmt = info.format;
     std::string params_text;
@@ -270,37 +330,52 @@ int run_analyze(const AnalyzeOptions& o) {
         for (const auto& p : rep.planes)
             std::fprintf(stderr, "  %s: %s%s\n", p.name.c_str(), p.present ? "" : "no grain; ", p.summary.c_str());
     }
-    return 0;
 }
 
-}  // namespace
+
+void add_analyze_options(CLI::App* sub, AnalyzeOptions& o) {
+    sub->add_option("input", o.input, "grainy input (raw planar YUV or Y4M), - for stdin")->required();
+    sub->add_option("--denoised", o.denoised, "the input's denoised version (same size and format) instead of the built-in denoiser");
+    sub->add_option("--model", o.model, "fgc (FGC SEI frequency-filtering model) or av1 (AV1 / AFGS1)")->required();
+    sub->add_option("--output,-o", o.output, "parameter JSON, usable as `filmgrain apply --params`")->required();
+    sub->add_option("--table", o.table, "av1: also write a libaom film grain table (filmgrn1)");
+    sub->add_option("--afgs1", o.afgs1, "av1: also write an AFGS1 ITU-T T.35 payload (one set for the input's format)");
+    sub->add_option("--sei", o.sei, "fgc: also write the FGC SEI payload (payloadType 19 body)");
+    sub->add_option("--sei-codec", o.sei_codec, "fgc: SEI syntax variant avc, hevc or vvc")->capture_default_str();
+    sub->add_option("--report", o.report, "HTML report; its PNG images are written beside it");
+    sub->add_option("--flavour", o.flavour, "fgc: the synthesis the scale is calibrated for, rdd5 or vtm")->capture_default_str();
+    sub->add_option("--max-frames", o.max_frames, "analyse about this many pictures, evenly spread")->capture_default_str();
+    sub->add_option("--frame-step", o.frame_step, "analyse every Nth picture (0: from --max-frames)")->capture_default_str();
+    sub->add_option("--temporal-radius", o.temporal_radius, "neighbours on each side for temporal denoising (0..8)")
+        ->capture_default_str();
+    sub->add_flag("--spatial", o.spatial, "denoise each picture on its own (spatial fallback only)");
+    sub->add_option("--accuracy", o.accuracy,
+                    "relative error the smallest model must meet (intervals / scaling points)")
+        ->capture_default_str();
+    sub->add_option("--max-lag", o.max_lag, "av1: longest AR lag considered (0..3)")->capture_default_str();
+    sub->add_flag("--quiet,-q", o.quiet, "no messages on stderr except errors");
+    o.raw.add_to(sub);
+}
+
+AnalyzeOptions parse_analyze_arguments(const std::vector<std::string>& args) {
+    AnalyzeOptions o;
+    CLI::App app("analyze");
+    add_analyze_options(&app, o);
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
+    }
+    return o;
+}
 
 void register_analyze(CLI::App& app) {
     auto o = std::make_shared<AnalyzeOptions>();
     CLI::App* sub = app.add_subcommand("analyze", "estimate FGC SEI or AV1 film grain parameters from grainy video");
-    sub->add_option("input", o->input, "grainy input (raw planar YUV or Y4M), - for stdin")->required();
-    sub->add_option("--denoised", o->denoised, "the input's denoised version (same size and format) instead of the built-in denoiser");
-    sub->add_option("--model", o->model, "fgc (FGC SEI frequency-filtering model) or av1 (AV1 / AFGS1)")->required();
-    sub->add_option("--output,-o", o->output, "parameter JSON, usable as `filmgrain apply --params`")->required();
-    sub->add_option("--table", o->table, "av1: also write a libaom film grain table (filmgrn1)");
-    sub->add_option("--afgs1", o->afgs1, "av1: also write an AFGS1 ITU-T T.35 payload (one set for the input's format)");
-    sub->add_option("--sei", o->sei, "fgc: also write the FGC SEI payload (payloadType 19 body)");
-    sub->add_option("--sei-codec", o->sei_codec, "fgc: SEI syntax variant avc, hevc or vvc")->capture_default_str();
-    sub->add_option("--report", o->report, "HTML report; its PNG images are written beside it");
-    sub->add_option("--flavour", o->flavour, "fgc: the synthesis the scale is calibrated for, rdd5 or vtm")->capture_default_str();
-    sub->add_option("--max-frames", o->max_frames, "analyse about this many pictures, evenly spread")->capture_default_str();
-    sub->add_option("--frame-step", o->frame_step, "analyse every Nth picture (0: from --max-frames)")->capture_default_str();
-    sub->add_option("--temporal-radius", o->temporal_radius, "neighbours on each side for temporal denoising (0..8)")
-        ->capture_default_str();
-    sub->add_flag("--spatial", o->spatial, "denoise each picture on its own (spatial fallback only)");
-    sub->add_option("--accuracy", o->accuracy,
-                    "relative error the smallest model must meet (intervals / scaling points)")
-        ->capture_default_str();
-    sub->add_option("--max-lag", o->max_lag, "av1: longest AR lag considered (0..3)")->capture_default_str();
-    sub->add_flag("--quiet,-q", o->quiet, "no messages on stderr except errors");
-    o->raw.add_to(sub);
+    add_analyze_options(sub, *o);
     sub->callback([o]() {
-        int rc = run_analyze(*o);
+        int rc = AnalysisJob(*o).run();
         if (rc) throw CLI::RuntimeError(rc);
     });
 }

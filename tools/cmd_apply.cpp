@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 
+#include "apply_job.hpp"
 #include "cli_common.hpp"
 #include "core/thread_pool.hpp"
 #include "frame_pipeline.hpp"
@@ -23,29 +24,7 @@
 namespace filmgrain::cli {
 namespace {
 
-struct ApplyOptions {
-    std::string input, output, params;
-    std::vector<std::string> sei;
-    std::vector<std::string> afgs1;
-    std::string sei_codec = "hevc";
-    std::string flavour = "rdd5";
-    std::string on_invalid = "error";
-    std::string persistence = "reference";
-    int block_size = 0;
-    int single_line_blocks = 0;
-    std::string coded_size;
-    int threads = 0;
-    bool quiet = false;
-    // vfgs flavour: the reference tool's own options
-    std::optional<uint32_t> seed;
-    int gain = 100;
-    std::string output_pix_fmt;
-    bool pattern_interpolation = false;
-    // AV1
-    int matrix_coefficients = -1;
-    int clip_to_restricted_range = -1;
-    RawVideoOptions raw;
-};
+
 
 // The per-frame loop shared by every model: read, synthesize, write, pipelined so that
 // the three overlap (frame_pipeline.hpp); the output file appears only when every frame
@@ -107,8 +86,8 @@ void report(const ApplyOptions& o, int k, const ApplyResult& r) {
     if (!r.message.empty() && !o.quiet) std::fprintf(stderr, "filmgrain: frame %d: %s\n", k, r.message.c_str());
 }
 
-int run_apply(const ApplyOptions& o) {
-    const FgcFlavour flavour = parse_flavour(o.flavour);
+void check_apply_options(const ApplyOptions& o) {
+    parse_flavour(o.flavour);
     if (o.on_invalid != "error" && o.on_invalid != "passthrough")
         throw Error(ErrorCode::kInvalidArgument, "--on-invalid '" + o.on_invalid + "' is not known (allowed error, passthrough)");
     if (o.persistence != "reference" && o.persistence != "semantic")
@@ -116,98 +95,191 @@ int run_apply(const ApplyOptions& o) {
                     "--persistence '" + o.persistence + "' is not known (allowed reference, semantic)");
     if (int(!o.params.empty()) + int(!o.sei.empty()) + int(!o.afgs1.empty()) != 1)
         throw Error(ErrorCode::kInvalidArgument, "give exactly one of --params FILE, --sei FILE or --afgs1 FILE");
+}
+
+session::ParameterFiles parameter_files_of(const ApplyOptions& o) {
     session::ParameterFiles files;
     files.params = o.params;
     files.sei = o.sei;
     files.afgs1 = o.afgs1;
     files.sei_codec = parse_fgc_codec(o.sei_codec);
     files.matrix_coefficients = o.matrix_coefficients;
-    session::ParameterFileFeed feed(files);
-    const session::FeedModel model = feed.model();
-    if (model == session::FeedModel::kFgc) {
-        if (flavour == FgcFlavour::kVfgs && o.single_line_blocks)
-            throw Error(ErrorCode::kInvalidArgument,
-                        "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
-        if (flavour != FgcFlavour::kVfgs &&
-            (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation))
-            throw Error(ErrorCode::kInvalidArgument,
-                        "--seed, --gain, --output-pix-fmt and --pattern-interpolation belong to --flavour vfgs");
-    }
-    Session session(session_options(o, flavour, model));
-    VideoInfo out_override;
-    const bool override_format = model == session::FeedModel::kFgc && flavour == FgcFlavour::kVfgs &&
-                                 !o.output_pix_fmt.empty();
-    if (override_format) out_override.format = parse_pix_fmt(o.output_pix_fmt);
-    const std::string name = model == session::FeedModel::kAv1     ? std::string("AV1 film grain")
-                             : model == session::FeedModel::kAfgs1 ? std::string("AFGS1 film grain")
-                                                                   : std::string("flavour ") + fgc_flavour_name(flavour);
-    return process_video(
-        o, out_override, override_format,
-        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) {
-            if (override_format && out_override.format.chroma != info.format.chroma)
-                throw Error(ErrorCode::kInvalidArgument, "--output-pix-fmt " + o.output_pix_fmt +
-                                                             " must keep the input's chroma format (" +
-                                                             pix_fmt_name(info.format) + ")");
-            const FrameInfo fi = feed.feed(session, k, info.fps_num, info.fps_den);
-            report(o, k, session.apply(in.view(), out.view(), &fi));
-        },
-        name.c_str());
+    return files;
 }
 
 }  // namespace
 
-void register_apply(CLI::App& app) {
-    auto o = std::make_shared<ApplyOptions>();
-    CLI::App* sub = app.add_subcommand("apply", "add film grain to a raw YUV or Y4M file");
-    sub->add_option("--input,-i", o->input, "input file (raw planar YUV or Y4M), - for stdin")->required();
-    sub->add_option("--output,-o", o->output, "output file (.y4m writes Y4M), - for stdout")->required();
-    sub->add_option("--params,-p", o->params, "parameter file: JSON (FGC SEI syntax elements, AV1 film_grain_params, or a per-frame list) or a libaom grain table (.tbl)");
-    sub->add_option("--sei", o->sei,
+ApplyJob::ApplyJob(const ApplyOptions& options) : o_(options) {
+    const ApplyOptions& o = o_;
+    check_apply_options(o);
+    flavour_ = parse_flavour(o.flavour);
+    session::ParameterFileFeed feed(parameter_files_of(o));
+    model_ = feed.model();
+    if (model_ == session::FeedModel::kFgc) {
+        if (flavour_ == FgcFlavour::kVfgs && o.single_line_blocks)
+            throw Error(ErrorCode::kInvalidArgument,
+                        "--single-line-blocks is an option of --flavour vtm and tr (VFGS adapts per sample)");
+        if (flavour_ != FgcFlavour::kVfgs &&
+            (o.gain != 100 || o.seed || !o.output_pix_fmt.empty() || o.pattern_interpolation))
+            throw Error(ErrorCode::kInvalidArgument,
+                        "--seed, --gain, --output-pix-fmt and --pattern-interpolation belong to --flavour vfgs");
+    }
+    session_options_ = session_options(o, flavour_, model_);
+    Session check(session_options_);  // the options' own checks, before any frame is read
+    override_format_ = model_ == session::FeedModel::kFgc && flavour_ == FgcFlavour::kVfgs && !o.output_pix_fmt.empty();
+    if (override_format_) out_override_.format = parse_pix_fmt(o.output_pix_fmt);
+}
+
+ApplyJob::~ApplyJob() = default;
+
+std::string ApplyJob::model_name() const {
+    return model_ == session::FeedModel::kAv1     ? std::string("AV1 film grain")
+           : model_ == session::FeedModel::kAfgs1 ? std::string("AFGS1 film grain")
+                                                  : std::string("flavour ") + fgc_flavour_name(flavour_);
+}
+
+VideoInfo ApplyJob::output_info() const {
+    VideoReader reader(o_.input, o_.raw.to_info());
+    VideoInfo out = reader.info();
+    if (override_format_) out.format = out_override_.format;
+    return out;
+}
+
+bool ApplyJob::output_y4m() const {
+    if (o_.output != "-") return has_y4m_extension(o_.output);
+    return VideoReader(o_.input, o_.raw.to_info()).info().y4m;
+}
+
+long long ApplyJob::frame_count() const {
+    if (o_.input == "-") return -1;
+    const VideoInfo in = VideoReader(o_.input, o_.raw.to_info()).info();
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(o_.input, ec);
+    if (ec) return -1;
+    return (long long)(size / (FrameBuffer::frame_bytes(in.width, in.height, in.format) + (in.y4m ? 6 : 0)));
+}
+
+void ApplyJob::synthesize(session::ParameterFileFeed& feed, Session& session, int k, const VideoInfo& info,
+                          FrameBuffer& in, FrameBuffer& out) const {
+    if (override_format_ && out_override_.format.chroma != info.format.chroma)
+        throw Error(ErrorCode::kInvalidArgument, "--output-pix-fmt " + o_.output_pix_fmt +
+                                                     " must keep the input's chroma format (" + pix_fmt_name(info.format) +
+                                                     ")");
+    const FrameInfo fi = feed.feed(session, k, info.fps_num, info.fps_den);
+    report(o_, k, session.apply(in.view(), out.view(), &fi));
+}
+
+int ApplyJob::run_all() const {
+    session::ParameterFileFeed feed(parameter_files_of(o_));
+    Session session(session_options_);
+    const std::string name = model_name();
+    return process_video(
+        o_, out_override_, override_format_,
+        [&](int k, const VideoInfo& info, FrameBuffer& in, FrameBuffer& out) { synthesize(feed, session, k, info, in, out); },
+        name.c_str());
+}
+
+int ApplyJob::run_range(int from, int to, const std::string& part) const {
+    if (from < 0 || to < from)
+        throw Error(ErrorCode::kInvalidArgument, "picture range [" + std::to_string(from) + ", " + std::to_string(to) +
+                                                     ") is not a range of pictures");
+    session::ParameterFileFeed feed(parameter_files_of(o_));
+    Session session(session_options_);
+    VideoReader reader(o_.input, o_.raw.to_info());
+    const VideoInfo info = reader.info();
+    // The state at `from` comes from the metadata of the pictures before it, not from
+    // synthesizing them (Session::skip_picture).
+    for (int k = 0; k < from; k++) {
+        const FrameInfo fi = feed.feed(session, k, info.fps_num, info.fps_den);
+        session.skip_picture(&fi);
+    }
+    if (!reader.skip_frames(from)) return 0;
+    VideoInfo out_info = info;
+    if (override_format_) out_info.format = out_override_.format;
+    VideoWriter writer(part, out_info, false);
+    FrameBuffer in, out;
+    int k = from;
+    for (; k < to && reader.read(in); k++) {
+        if (out.width() != in.width() || out.height() != in.height() || out.format().chroma != out_info.format.chroma ||
+            out.format().bit_depth != out_info.format.bit_depth)
+            out = FrameBuffer(in.width(), in.height(), out_info.format);
+        synthesize(feed, session, k, info, in, out);
+        writer.write(out);
+    }
+    writer.commit();
+    return k - from;
+}
+
+
+void add_apply_options(CLI::App* sub, ApplyOptions& o) {
+    sub->add_option("--input,-i", o.input, "input file (raw planar YUV or Y4M), - for stdin")->required();
+    sub->add_option("--output,-o", o.output, "output file (.y4m writes Y4M), - for stdout")->required();
+    sub->add_option("--params,-p", o.params, "parameter file: JSON (FGC SEI syntax elements, AV1 film_grain_params, or a per-frame list) or a libaom grain table (.tbl)");
+    sub->add_option("--sei", o.sei,
                     "raw FGC SEI payload(s) (payloadType 19 body); one file for every picture, several for "
                     "pictures 0,1,..., or a printf pattern such as frame%d.fgc.bin (missing = no SEI)");
-    sub->add_option("--afgs1", o->afgs1,
+    sub->add_option("--afgs1", o.afgs1,
                     "AFGS1 ITU-T T.35 payload(s) (with or without the B5 5890 01 header); one file for every "
                     "picture, several for pictures 0,1,..., or a printf pattern (missing = no grain)");
-    sub->add_option("--sei-codec", o->sei_codec, "SEI syntax variant: avc, hevc or vvc")->capture_default_str();
-    sub->add_option("--flavour", o->flavour,
+    sub->add_option("--sei-codec", o.sei_codec, "SEI syntax variant: avc, hevc or vvc")->capture_default_str();
+    sub->add_option("--flavour", o.flavour,
                     "rdd5 (SMPTE RDD 5 / FFmpeg), vtm (HM/VTM reference), vfgs (VersatileFilmGrain) or tr (rdd5 "
                     "plus what TR 23002-9 allows beyond the references: auto-regressive model, multiplicative "
                     "blending, film grain bit depth)")
         ->capture_default_str();
-    sub->add_option("--on-invalid", o->on_invalid,
+    sub->add_option("--on-invalid", o.on_invalid,
                     "invalid parameter set: error (exit non-zero) or passthrough (picture unchanged, as the references)")
         ->capture_default_str();
-    sub->add_option("--persistence", o->persistence,
+    sub->add_option("--persistence", o.persistence,
                     "pictures without an SEI: reference (HM: reuse the last SEI) or semantic (persistence_flag)")
         ->capture_default_str();
-    sub->add_option("--block-size", o->block_size,
+    sub->add_option("--block-size", o.block_size,
                     "force the block size 8, 16 or 32 (0: flavour default; vfgs has 16 only)");
-    sub->add_option("--single-line-blocks", o->single_line_blocks,
+    sub->add_option("--single-line-blocks", o.single_line_blocks,
                     "vtm, tr: TR 23002-9 7.3.2.3 single-line blocks, intensity averaged over 8x1, 16x1 or 32x1 "
                     "segments, one template per component and picture (0: square blocks)");
-    sub->add_option("--coded-size", o->coded_size,
+    sub->add_option("--coded-size", o.coded_size,
                     "vtm: the stream's coded picture size WxH (SPS), which picks HM's block size "
                     "(default: the picture size rounded up to a multiple of 16)");
-    sub->add_option("--threads", o->threads,
+    sub->add_option("--threads", o.threads,
                     "synthesis threads per frame, rdd5/vtm/AV1 (0: all cores; the output is the same for any count)")
         ->check(CLI::Range(0, kMaxThreads));
-    sub->add_option("--seed", o->seed, "vfgs: the reference's -r seed (absent: its default state 0xDEADBEEF)");
-    sub->add_option("--gain", o->gain, "vfgs: the reference's --gain in percent")->capture_default_str();
-    sub->add_option("--output-pix-fmt", o->output_pix_fmt, "vfgs: output format, e.g. yuv420p for 8-bit output of 10-bit input");
-    sub->add_flag("--pattern-interpolation", o->pattern_interpolation,
+    sub->add_option("--seed", o.seed, "vfgs: the reference's -r seed (absent: its default state 0xDEADBEEF)");
+    sub->add_option("--gain", o.gain, "vfgs: the reference's --gain in percent")->capture_default_str();
+    sub->add_option("--output-pix-fmt", o.output_pix_fmt, "vfgs: output format, e.g. yuv420p for 8-bit output of 10-bit input");
+    sub->add_flag("--pattern-interpolation", o.pattern_interpolation,
                   "vfgs: TR 23002-9 7.2.4.2 pattern interpolation, blending the templates of neighbouring intensity "
                   "intervals near their boundary (compiled out of the reference: not bit-exact with it)");
-    sub->add_option("--matrix-coefficients", o->matrix_coefficients,
+    sub->add_option("--matrix-coefficients", o.matrix_coefficients,
                     "AV1: the stream's matrix_coefficients (0 = identity changes the chroma clip); default from the "
                     "parameter file, else 2")
         ->check(CLI::Range(0, 255));
-    sub->add_option("--clip-to-restricted-range", o->clip_to_restricted_range,
+    sub->add_option("--clip-to-restricted-range", o.clip_to_restricted_range,
                     "AV1: override clip_to_restricted_range (0/1); libaom grain tables cannot carry it")
         ->check(CLI::Range(0, 1));
-    sub->add_flag("--quiet,-q", o->quiet, "no messages on stderr except errors");
-    o->raw.add_to(sub);
+    sub->add_flag("--quiet,-q", o.quiet, "no messages on stderr except errors");
+    o.raw.add_to(sub);
+}
+
+ApplyOptions parse_apply_arguments(const std::vector<std::string>& args) {
+    ApplyOptions o;
+    CLI::App app("apply");
+    add_apply_options(&app, o);
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
+    }
+    return o;
+}
+
+void register_apply(CLI::App& app) {
+    auto o = std::make_shared<ApplyOptions>();
+    CLI::App* sub = app.add_subcommand("apply", "add film grain to a raw YUV or Y4M file");
+    add_apply_options(sub, *o);
     sub->callback([o]() {
-        int rc = run_apply(*o);
+        int rc = ApplyJob(*o).run_all();
         if (rc) throw CLI::RuntimeError(rc);
     });
 }

@@ -46,6 +46,10 @@ struct DecodeOptions {
     bool no_grain = false;
     bool strict = false;
     int threads = 0;
+    // A range of the output pictures (distributed runs): pictures before it are decoded
+    // but neither synthesized nor written.
+    int first_frame = 0;
+    int frame_count = -1;
 };
 
 // --strict and damaged units: the output is complete, the status tells the damage apart from
@@ -159,7 +163,7 @@ int run_decode(const DecodeOptions& o) {
     std::unique_ptr<VideoWriter> writer;
     VideoInfo info;
     libav::DecodedFrame frame;
-    int64_t n = 0, with_grain = 0, skipped_frames = 0;
+    int64_t n = 0, with_grain = 0, skipped_frames = 0, picture_position = 0;
     Progress progress(!o.quiet && o.output != "-" && isatty(STDERR_FILENO), d.frames_estimate);
     const auto warn = [&progress](const std::string& text) {
         progress.break_line();
@@ -199,6 +203,9 @@ int run_decode(const DecodeOptions& o) {
             skipped_frames++;
             continue;
         }
+        const int64_t position = picture_position++;
+        if (o.frame_count >= 0 && position >= int64_t(o.first_frame) + o.frame_count) break;
+        if (position < o.first_frame) continue;
         if (!o.no_grain && !frame.av1 && !frame.fgc && std::size_t(frame.index) < afgs1.size() &&
             afgs1[std::size_t(frame.index)]) {
             // the set AFGS1 7.3 selects for this picture, as resolved AV1 parameters
@@ -240,7 +247,8 @@ int run_decode(const DecodeOptions& o) {
         progress.frame_done(n);
     }
     const int64_t damaged = decoder.damaged_units() + skipped_frames;
-    if (n == 0)
+    // a range past the last picture is empty, not an error
+    if (n == 0 && (!writer || o.first_frame == 0))
         throw Error(ErrorCode::kIo, "'" + o.input + "' decoded to no frame" +
                                         (damaged ? " (" + std::to_string(damaged) + " damaged unit(s) skipped)" : ""));
     writer->commit();
@@ -288,6 +296,11 @@ void register_decode(CLI::App& app) {
     sub->add_flag("--strict", o->strict,
                   "exit with status 3 when the input had damaged units (the output is still written complete); "
                   "without it damage is only warned about");
+    sub->add_option("--first-frame", o->first_frame,
+                    "write the output from this picture on (the pictures before it are decoded, not synthesized)")
+        ->check(CLI::Range(0, 1 << 30));
+    sub->add_option("--frames", o->frame_count, "write at most this many pictures (default: all)")
+        ->check(CLI::Range(0, 1 << 30));
     sub->add_flag("--quiet,-q", o->quiet, "no progress or messages on stderr except errors and damaged units");
     sub->callback([o]() {
         if (int rc = run_decode(*o)) throw CLI::RuntimeError(rc);

@@ -9,18 +9,9 @@
 #include "filmgrain/error.hpp"
 #include "stats/grain_statistics.hpp"
 #include "still_image.hpp"
+#include "stats_report.hpp"
 
 namespace filmgrain::cli {
-namespace {
-
-struct StatsOptions {
-    std::string clean, grainy;
-    bool json = false;
-    int max_lag = 4, channel = 0, bins = 16, spectrum_block = 32;
-    std::vector<int> blocks{8, 16, 32, 64};
-    std::vector<int> periods{32, 64};
-    RawVideoOptions raw;
-};
 
 nlohmann::json statistics_json(const FloatPlane& clean, const FloatPlane& grain, const StatsOptions& o) {
     nlohmann::json j;
@@ -53,6 +44,8 @@ nlohmann::json statistics_json(const FloatPlane& clean, const FloatPlane& grain,
     return j;
 }
 
+namespace {
+
 void print_text(const nlohmann::json& j) {
     std::printf("grain statistics, %dx%d\n", j["width"].get<int>(), j["height"].get<int>());
     std::printf("variance vs intensity (grain in units of full scale):\n");
@@ -84,60 +77,83 @@ void print_text(const nlohmann::json& j) {
 
 }  // namespace
 
+nlohmann::json grain_statistics_report(const StatsOptions& options) {
+    const StatsOptions* o = &options;
+    nlohmann::json j;
+    if (is_video_path(o->clean)) {
+        VideoReader a(o->clean, o->raw.to_info()), b(o->grainy, o->raw.to_info());
+        FrameBuffer fa, fb;
+        FloatPlane first_clean, first_grain, prev;
+        double corr = 0;
+        int pairs = 0, frames = 0;
+        while (a.read(fa)) {
+            if (!b.read(fb)) throw Error(ErrorCode::kIo, o->grainy + " has fewer frames than " + o->clean);
+            const int c = o->channel;
+            if (c < 0 || c >= fa.view().plane_count())
+                throw Error(ErrorCode::kInvalidArgument, "--channel " + std::to_string(c) + " is not a plane of the input");
+            const FloatPlane ca = float_plane_from(fa.view().planes[c], a.info().format.bit_depth);
+            const FloatPlane g = stats::grain_of(ca, float_plane_from(fb.view().planes[c], b.info().format.bit_depth));
+            if (frames == 0) {
+                first_clean = ca;
+                first_grain = g;
+            } else {
+                corr += stats::frame_to_frame_correlation(prev, g);
+                pairs++;
+            }
+            prev = g;
+            frames++;
+        }
+        if (!frames) throw Error(ErrorCode::kIo, o->clean + " has no frames");
+        j = statistics_json(first_clean, first_grain, *o);
+        if (pairs) {
+            j["frame_to_frame_correlation"] = corr / pairs;
+            j["frame_pairs"] = pairs;
+        }
+    } else {
+        const StillImage a = read_still_image(o->clean), b = read_still_image(o->grainy);
+        if (o->channel < 0 || o->channel >= int(a.channels.size()) || o->channel >= int(b.channels.size()))
+            throw Error(ErrorCode::kInvalidArgument, "--channel " + std::to_string(o->channel) + " is not a channel of the inputs");
+        j = statistics_json(a.channels[o->channel], stats::grain_of(a.channels[o->channel], b.channels[o->channel]), *o);
+    }
+    return j;
+}
+
+void add_stats_options(CLI::App* sub, StatsOptions& o) {
+    sub->add_option("clean", o.clean, "clean input (still or .y4m/.yuv)")->required();
+    sub->add_option("grainy", o.grainy, "the same with grain")->required();
+    sub->add_flag("--json", o.json, "print JSON");
+    sub->add_option("--max-lag", o.max_lag, "autocovariance lags")->capture_default_str()->check(CLI::Range(1, 64));
+    sub->add_option("--channel", o.channel, "still: channel; video: plane")->capture_default_str();
+    sub->add_option("--bins", o.bins, "intensity bins")->capture_default_str()->check(CLI::Range(1, 4096));
+    sub->add_option("--spectrum-block", o.spectrum_block, "Welch block size")->capture_default_str()->check(CLI::Range(4, 256));
+    sub->add_option("--blocks", o.blocks, "block sizes for the boundary variance (2..4096)")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 4096));
+    sub->add_option("--periods", o.periods, "template periods to test for repetition (1..65536)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 65536));
+    o.raw.add_to(sub);
+}
+
+StatsOptions parse_stats_arguments(const std::vector<std::string>& args) {
+    StatsOptions o;
+    CLI::App app("stats");
+    add_stats_options(&app, o);
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
+    }
+    return o;
+}
+
 void register_stats(CLI::App& app) {
     auto o = std::make_shared<StatsOptions>();
     CLI::App* sub = app.add_subcommand("stats", "grain statistics of a clean and a grainy picture or video");
-    sub->add_option("clean", o->clean, "clean input (still or .y4m/.yuv)")->required();
-    sub->add_option("grainy", o->grainy, "the same with grain")->required();
-    sub->add_flag("--json", o->json, "print JSON");
-    sub->add_option("--max-lag", o->max_lag, "autocovariance lags")->capture_default_str()->check(CLI::Range(1, 64));
-    sub->add_option("--channel", o->channel, "still: channel; video: plane")->capture_default_str();
-    sub->add_option("--bins", o->bins, "intensity bins")->capture_default_str()->check(CLI::Range(1, 4096));
-    sub->add_option("--spectrum-block", o->spectrum_block, "Welch block size")->capture_default_str()->check(CLI::Range(4, 256));
-    sub->add_option("--blocks", o->blocks, "block sizes for the boundary variance (2..4096)")
-        ->capture_default_str()
-        ->check(CLI::Range(2, 4096));
-    sub->add_option("--periods", o->periods, "template periods to test for repetition (1..65536)")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 65536));
-    o->raw.add_to(sub);
+    add_stats_options(sub, *o);
     sub->callback([o]() {
-        nlohmann::json j;
-        if (is_video_path(o->clean)) {
-            VideoReader a(o->clean, o->raw.to_info()), b(o->grainy, o->raw.to_info());
-            FrameBuffer fa, fb;
-            FloatPlane first_clean, first_grain, prev;
-            double corr = 0;
-            int pairs = 0, frames = 0;
-            while (a.read(fa)) {
-                if (!b.read(fb)) throw Error(ErrorCode::kIo, o->grainy + " has fewer frames than " + o->clean);
-                const int c = o->channel;
-                if (c < 0 || c >= fa.view().plane_count())
-                    throw Error(ErrorCode::kInvalidArgument, "--channel " + std::to_string(c) + " is not a plane of the input");
-                const FloatPlane ca = float_plane_from(fa.view().planes[c], a.info().format.bit_depth);
-                const FloatPlane g = stats::grain_of(ca, float_plane_from(fb.view().planes[c], b.info().format.bit_depth));
-                if (frames == 0) {
-                    first_clean = ca;
-                    first_grain = g;
-                } else {
-                    corr += stats::frame_to_frame_correlation(prev, g);
-                    pairs++;
-                }
-                prev = g;
-                frames++;
-            }
-            if (!frames) throw Error(ErrorCode::kIo, o->clean + " has no frames");
-            j = statistics_json(first_clean, first_grain, *o);
-            if (pairs) {
-                j["frame_to_frame_correlation"] = corr / pairs;
-                j["frame_pairs"] = pairs;
-            }
-        } else {
-            const StillImage a = read_still_image(o->clean), b = read_still_image(o->grainy);
-            if (o->channel < 0 || o->channel >= int(a.channels.size()) || o->channel >= int(b.channels.size()))
-                throw Error(ErrorCode::kInvalidArgument, "--channel " + std::to_string(o->channel) + " is not a channel of the inputs");
-            j = statistics_json(a.channels[o->channel], stats::grain_of(a.channels[o->channel], b.channels[o->channel]), *o);
-        }
+        const nlohmann::json j = grain_statistics_report(*o);
         if (o->json)
             std::printf("%s\n", j.dump(2).c_str());
         else

@@ -107,6 +107,13 @@ public:
     // dst may be src. info nullptr: POC counts pictures from 0, idr_pic_id 0.
     ApplyResult apply(const FrameView& src, const FrameView& dst, const FrameInfo* info = nullptr);
 
+    // Follows the stream over one picture without synthesizing it: the metadata state moves
+    // on exactly as apply() would move it (pending SEIs, persistence and cancel, AFGS1
+    // payloads, the picture count), so that work on a range of a stream can start mid-way
+    // from the metadata alone. vfgs throws Error(kUnsupported): its reference's random
+    // state runs through the samples of every picture.
+    void skip_picture(const FrameInfo* info = nullptr);
+
     const SessionOptions& options() const;
 
 private:

@@ -105,6 +105,29 @@ void accumulate_ar(const cv::Mat& normalized, const cv::Mat& luma_normalized, co
 
 }  // namespace
 
+void merge_observations(PlaneObservations& total, const PlaneObservations& part) {
+    total.blocks.insert(total.blocks.end(), part.blocks.begin(), part.blocks.end());
+    for (int b = 0; b < kPowerBins; b++) {
+        if (!part.dct_blocks[b]) continue;
+        total.dct_power[b] += part.dct_power[b];
+        total.dct_blocks[b] += part.dct_blocks[b];
+    }
+    auto add = [](ArEquations& t, const ArEquations& p) {
+        t.xtx += p.xtx;
+        t.xty += p.xty;
+        t.yty += p.yty;
+        t.n += p.n;
+    };
+    add(total.ar_halves[0], part.ar_halves[0]);
+    add(total.ar_halves[1], part.ar_halves[1]);
+    total.ar.xtx = total.ar_halves[0].xtx + total.ar_halves[1].xtx;
+    total.ar.xty = total.ar_halves[0].xty + total.ar_halves[1].xty;
+    total.ar.yty = total.ar_halves[0].yty + total.ar_halves[1].yty;
+    total.ar.n = total.ar_halves[0].n + total.ar_halves[1].n;
+    total.flat_samples += part.flat_samples;
+    total.total_samples += part.total_samples;
+}
+
 cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
                       int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
                       PlaneObservations& out) {

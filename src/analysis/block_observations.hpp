@@ -64,6 +64,10 @@ struct ObservationRequest {
     int half = 0;                // which of ar_halves this picture adds to
 };
 
+// Adds `part` (e.g. one picture's observations) to `total`: blocks appended, sums added.
+// Pictures merged in the same order give the same sums, however they were gathered.
+void merge_observations(PlaneObservations& total, const PlaneObservations& part);
+
 // Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma
 // grain divided by its block level, resampled to this plane's size.
 // Returns this plane's grain divided by its block level (for the chroma planes' luma term).

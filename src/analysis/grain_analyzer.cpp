@@ -15,6 +15,8 @@ GrainAnalyzer::GrainAnalyzer(const AnalysisOptions& options, PixelFormat format,
     if (o_.temporal_radius < 0 || o_.temporal_radius > 8)
         throw Error(ErrorCode::kInvalidArgument, out_of_range_message("temporal_radius", o_.temporal_radius, 0, 8));
     if (o_.spatial_only) o_.temporal_radius = 0;
+    if (o_.first_index < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("first_index", o_.first_index, 0, 1 << 30));
+    next_to_analyse_ = o_.first_index;
 }
 
 GrainAnalyzer::~GrainAnalyzer() = default;
@@ -27,13 +29,13 @@ void GrainAnalyzer::add_frame(const FrameBuffer& source, const FrameBuffer* deno
                      denoised->format().chroma != fmt_.chroma || denoised->format().bit_depth != fmt_.bit_depth))
         throw Error(ErrorCode::kInvalidArgument,
                     "denoised frame " + std::to_string(frames_seen_) + " differs in size or format from the source");
-    Held h{frames_seen_, source, denoised ? std::make_unique<FrameBuffer>(*denoised) : nullptr};
+    Held h{o_.first_index + frames_seen_, source, denoised ? std::make_unique<FrameBuffer>(*denoised) : nullptr};
     window_.push_back(std::move(h));
     frames_seen_++;
     // A picture is analysed once its right-hand neighbours have arrived.
     const int radius = denoised ? 0 : o_.temporal_radius;
-    while (next_to_analyse_ + radius < frames_seen_) {
-        if (next_to_analyse_ % o_.frame_step == 0) {
+    while (next_to_analyse_ + radius < o_.first_index + frames_seen_) {
+        if (wanted(next_to_analyse_)) {
             for (std::size_t i = 0; i < window_.size(); i++)
                 if (window_[i].index == next_to_analyse_) analyse(i);
         }
@@ -43,8 +45,8 @@ void GrainAnalyzer::add_frame(const FrameBuffer& source, const FrameBuffer* deno
 }
 
 void GrainAnalyzer::finish() {
-    for (; next_to_analyse_ < frames_seen_; next_to_analyse_++)
-        if (next_to_analyse_ % o_.frame_step == 0)
+    for (; next_to_analyse_ < o_.first_index + frames_seen_; next_to_analyse_++)
+        if (wanted(next_to_analyse_))
             for (std::size_t i = 0; i < window_.size(); i++)
                 if (window_[i].index == next_to_analyse_) analyse(i);
     window_.clear();
@@ -62,7 +64,10 @@ void GrainAnalyzer::analyse(std::size_t wi) {
     ObservationRequest req;
     req.dct_power = true;  // FGC cut-offs; the spectrum of the report for both models
     req.ar_equations = o_.model == GrainModel::kAv1;
-    req.half = frames_analysed_ & 1;
+    // the clip's analysed pictures alternate between the halves, wherever the range starts
+    req.half = (k / o_.frame_step) & 1;
+    PictureObservations picture;
+    picture.index = k;
     cv::Mat luma_normalized;
     const bool keep = sample_.index < 0 || (sample_.index < 2 * o_.temporal_radius && k >= 2 * o_.temporal_radius);
     if (keep) sample_.index = k;
@@ -88,14 +93,14 @@ void GrainAnalyzer::analyse(std::size_t wi) {
         cv::Mat usable;
         cv::bitwise_and(flat, g.reliable, usable);
         const int nflat = cv::countNonZero(flat), nusable = cv::countNonZero(usable);
-        flat_samples_ += nflat;
-        reliable_samples_ += nusable;
+        picture.flat_samples += nflat;
+        picture.reliable_samples += nusable;
         // Nothing (or almost nothing) still: measure on the spatial estimate rather than not at all.
         if (nusable < nflat / 10) usable = flat;
         cv::Mat luma_term;
         if (p > 0 && req.ar_equations && !luma_normalized.empty())
             cv::resize(luma_normalized, luma_term, s.size(), 0, 0, cv::INTER_AREA);
-        cv::Mat normalized = observe_plane(s, g.denoised, g.grain, usable, fmt_.bit_depth, luma_term, req, obs_[p]);
+        cv::Mat normalized = observe_plane(s, g.denoised, g.grain, usable, fmt_.bit_depth, luma_term, req, picture.planes[p]);
         if (p == 0) luma_normalized = normalized;
         if (keep) {
             sample_.source[p] = s;
@@ -103,6 +108,20 @@ void GrainAnalyzer::analyse(std::size_t wi) {
             if (p == 0) sample_.flat_luma = flat;
         }
     }
+    merge_picture(picture);
+    if (o_.keep_picture_observations) pictures_.push_back(std::move(picture));
+}
+
+bool GrainAnalyzer::wanted(int k) const {
+    return k % o_.frame_step == 0 && k >= o_.analyse_from && k < o_.analyse_to;
+}
+
+// Every picture's observations are gathered on their own and added here, so that a clip
+// analysed in ranges (the same pictures merged in the same order) gives the same sums.
+void GrainAnalyzer::merge_picture(const PictureObservations& picture) {
+    for (int p = 0; p < 3; p++) merge_observations(obs_[p], picture.planes[p]);
+    flat_samples_ += picture.flat_samples;
+    reliable_samples_ += picture.reliable_samples;
     frames_analysed_++;
 }
 

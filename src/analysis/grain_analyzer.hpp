@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "analysis/av1_estimation.hpp"
 #include "analysis/block_observations.hpp"
@@ -25,6 +26,21 @@ struct AnalysisOptions {
     double accuracy = 0.05;
     int max_ar_lag = 3;
     bool spatial_only = false;  // denoise each picture on its own (no temporal neighbours)
+    // A range of a clip (distributed analysis): the first picture added has index
+    // `first_index`; only pictures in [analyse_from, analyse_to) are analysed, the others
+    // are temporal neighbours. With the neighbours on both sides of the range supplied, the
+    // range's observations equal those the whole clip gives for its pictures.
+    int first_index = 0;
+    int analyse_from = 0;
+    int analyse_to = 1 << 30;
+    bool keep_picture_observations = false;  // keep each analysed picture's own (picture_observations())
+};
+
+// One analysed picture's observations, merged into the clip's in picture order.
+struct PictureObservations {
+    int index = -1;
+    std::array<PlaneObservations, 3> planes;
+    long long flat_samples = 0, reliable_samples = 0;
 };
 
 // One analysed picture kept for the report: source and denoised planes (CV_32F).
@@ -45,6 +61,9 @@ public:
     int frames_seen() const { return frames_seen_; }
     int frames_analysed() const { return frames_analysed_; }
     const std::array<PlaneObservations, 3>& observations() const { return obs_; }
+    const std::vector<PictureObservations>& picture_observations() const { return pictures_; }
+    // Adds an analysed picture's observations (gathered elsewhere) as if analysed here.
+    void merge_picture(const PictureObservations& picture);
     const AnalysedPicture& sample_picture() const { return sample_; }
     double reliable_fraction() const;  // share of flat samples with an unbiased grain estimate
 
@@ -53,6 +72,7 @@ public:
 
 private:
     void analyse(std::size_t window_index);
+    bool wanted(int index) const;
     AnalysisOptions o_;
     PixelFormat fmt_;
     int width_, height_;
@@ -67,6 +87,7 @@ private:
     std::array<PlaneObservations, 3> obs_;
     long long reliable_samples_ = 0, flat_samples_ = 0;
     AnalysedPicture sample_;
+    std::vector<PictureObservations> pictures_;
 };
 
 }  // namespace filmgrain::analysis

@@ -126,9 +126,10 @@ void check_frame(const FrameView& src, const FrameView& dst) {
 }
 }  // namespace
 
-FgcFrameResult FgcStreamSynthesis::apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids) {
-    check_frame(src, dst);
-    FgcFrameResult result;
+// The SEI in force for the next picture: the one that arrived with it, else the previous
+// one as far as persistence allows. Synthesis plays no part, so a stream can be followed
+// over pictures that are not synthesized (skip_picture).
+void FgcStreamSynthesis::advance_to_next_picture() {
     if (has_pending_ && active_ && active_->codec == pending_codec_ && same_sei(active_->params, pending_)) {
         has_pending_ = false;
     } else if (has_pending_) {
@@ -141,6 +142,14 @@ FgcFrameResult FgcStreamSynthesis::apply(const FrameView& src, const FrameView& 
         // The SEI applied to its own picture only (H.274 persistence semantics).
         active_.reset();
     }
+}
+
+void FgcStreamSynthesis::skip_picture() { advance_to_next_picture(); }
+
+FgcFrameResult FgcStreamSynthesis::apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids) {
+    check_frame(src, dst);
+    FgcFrameResult result;
+    advance_to_next_picture();
     if (!active_) {
         copy_frame(src, dst);
         return result;

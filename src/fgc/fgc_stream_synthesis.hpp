@@ -55,6 +55,9 @@ public:
 
     // An FGC SEI that arrived with the next picture to be applied.
     void receive_sei(const FgcParams& params, FgcCodec codec = FgcCodec::kHevc);
+    // Follows the stream over one picture without synthesizing it (the SEI in force and
+    // persistence move on as apply() moves them).
+    void skip_picture();
     // A new coded layer-wise video sequence: nothing persists across it.
     void reset();
 
@@ -70,6 +73,7 @@ public:
     std::size_t working_bytes() const;
 
 private:
+    void advance_to_next_picture();
     struct Active;
     FgcOptions options_;
     FgcParams pending_;  // valid when has_pending_; kept to reuse its storage

@@ -159,6 +159,26 @@ std::optional<uint64_t> InputFile::remaining() const {
     return uint64_t(st.st_size) > position ? uint64_t(st.st_size) - position : 0;
 }
 
+uint64_t InputFile::skip(uint64_t n) {
+    const uint64_t buffered = std::min<uint64_t>(n, end_ - pos_);
+    pos_ += std::size_t(buffered);
+    uint64_t done = buffered;
+    if (done == n) return done;
+    if (const auto left = remaining()) {
+        const uint64_t step = std::min<uint64_t>(n - done, *left);
+        if (::lseek(fd_, off_t(step), SEEK_CUR) < 0)
+            throw Error(ErrorCode::kIo, "cannot seek in '" + path_ + "': " + std::strerror(errno));
+        return done + step;
+    }
+    uint8_t scratch[65536];
+    while (done < n) {
+        const std::size_t got = read(scratch, std::size_t(std::min<uint64_t>(sizeof scratch, n - done)));
+        if (got == 0) break;
+        done += got;
+    }
+    return done;
+}
+
 std::vector<uint8_t> read_whole_file(const std::string& path, std::size_t max_bytes, const std::string& what) {
     InputFile in(path);
     const std::string limit = "the limit for " + what + " is " + byte_count(max_bytes);

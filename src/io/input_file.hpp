@@ -62,6 +62,9 @@ public:
     // A regular file: the bytes from the current position to its end (as it is now).
     // Anything else (pipe, device, terminal): nullopt.
     std::optional<uint64_t> remaining() const;
+    // Passes over n bytes (seeks in a regular file, reads elsewhere); returns how many there
+    // were (fewer only at the end of the input).
+    uint64_t skip(uint64_t n);
 
 private:
     std::size_t read_fd(uint8_t* dst, std::size_t n);  // one read(2), waiting cancellably

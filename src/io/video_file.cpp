@@ -75,6 +75,32 @@ void VideoReader::read_y4m_header() {
     info_.y4m_extra = h.extra;
 }
 
+bool VideoReader::skip_frames(int n) {
+    const std::size_t bytes = FrameBuffer::frame_bytes(info_.width, info_.height, info_.format);
+    for (int i = 0; i < n; i++) {
+        if (info_.y4m) {
+            int c = in_->get();
+            if (c < 0) return false;
+            std::string line(1, char(c));
+            while ((c = in_->get()) >= 0 && c != '\n') {
+                line.push_back(char(c));
+                if (line.size() > kMaxY4mHeaderBytes) break;
+            }
+            try {
+                parse_y4m_frame_header(line);
+            } catch (const Error& e) {
+                throw Error(ErrorCode::kIo, "'" + path_ + "': frame " + std::to_string(frames_) + ": " + e.what());
+            }
+        }
+        if (in_->skip(bytes) != bytes) {
+            if (!info_.y4m) return false;
+            throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " is incomplete");
+        }
+        frames_++;
+    }
+    return true;
+}
+
 bool VideoReader::read(FrameBuffer& frame) {
     if (info_.y4m) {
         int c = in_->get();

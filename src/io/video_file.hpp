@@ -38,6 +38,9 @@ public:
     // without zero fill when its size or format differs. Reads wait cancellably on a pipe
     // (ReadCancellation, input_file.hpp).
     bool read(FrameBuffer& frame);
+    // Passes over the next n frames without reading their samples (a seek in a regular
+    // file): a range of a clip starts where it starts. false when the input ends first.
+    bool skip_frames(int n);
     int frames_read() const { return frames_; }
 
 private:

@@ -345,6 +345,29 @@ void Session::reset() {
     s.make_synthesizers();
 }
 
+void Session::skip_picture(const FrameInfo* info) {
+    Impl& s = *impl_;
+    FrameInfo fi;
+    if (info) fi = *info;
+    else fi.ids.poc = s.pictures_applied;
+    switch (s.model) {
+    case Impl::Model::kNone:
+    case Impl::Model::kAv1: break;
+    case Impl::Model::kFgc: {
+        if (!s.fgc)
+            throw Error(ErrorCode::kUnsupported,
+                        "the vfgs flavour cannot follow a stream without synthesizing it (VersatileFilmGrain's random "
+                        "state runs through the samples of every picture)");
+        std::optional<session::PendingSei> sei = s.pending.take_for(fi.ids);
+        if (sei) s.fgc->receive_sei(sei->params, sei->codec);
+        s.fgc->skip_picture();
+        break;
+    }
+    case Impl::Model::kAfgs1: s.afgs1_pending.reset(); break;
+    }
+    s.pictures_applied = static_cast<int>(static_cast<unsigned>(s.pictures_applied) + 1u);
+}
+
 ApplyResult Session::apply(const FrameView& src, const FrameView& dst, const FrameInfo* info) {
     Impl& s = *impl_;
     FrameInfo fi;
