@@ -4,6 +4,7 @@
 // picture's observations and fits once, in picture order: the same observations and the
 // same sums, so the same parameters as the one pass.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,8 @@ struct AnalyzeOptions {
     RawVideoOptions raw;
 };
 
-// The analyze subcommand's options (shared by the CLI and the Python module's parser).
+// The analyze subcommand's options (the CLI's, and through parse_subcommand_arguments the Python module's).
 void add_analyze_options(CLI::App* sub, AnalyzeOptions& o);
-AnalyzeOptions parse_analyze_arguments(const std::vector<std::string>& args);
 
 #ifdef FILMGRAIN_HAVE_ANALYSIS
 class AnalysisJob {
@@ -46,7 +46,7 @@ public:
     // The observations of the analysed pictures in [from, to), in picture order.
     std::vector<analysis::PictureObservations> observe_range(int from, int to) const;
     // The one-pass analysis of `filmgrain analyze`, outputs included.
-    int run() const;
+    int run();
     // Fits the pictures' observations (in picture order) of a clip of `frames` pictures
     // and writes the outputs, as run() does.
     void write_outputs_from(const std::vector<analysis::PictureObservations>& pictures, int frames) const;
@@ -54,6 +54,7 @@ public:
 private:
     void write_outputs(const analysis::GrainAnalyzer& analyzer, int frames) const;
     AnalyzeOptions o_;
+    std::unique_ptr<VideoReader> reader_;  // opened by the constructor, read by run()
     VideoInfo info_;
     long long total_ = -1;
     analysis::AnalysisOptions ao_;

@@ -4,6 +4,7 @@
 // before it (Session::skip_picture), not by synthesizing them: the joined ranges equal the
 // CLI's output byte for byte, whatever the split.
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,9 +39,8 @@ struct ApplyOptions {
     RawVideoOptions raw;
 };
 
-// The apply subcommand's options (shared by the CLI and the Python module's parser).
+// The apply subcommand's options (the CLI's, and through parse_subcommand_arguments the Python module's).
 void add_apply_options(CLI::App* sub, ApplyOptions& o);
-ApplyOptions parse_apply_arguments(const std::vector<std::string>& args);
 
 class ApplyJob {
 public:
@@ -51,12 +51,14 @@ public:
     bool output_y4m() const;
     long long frame_count() const;  // -1: not known (a pipe)
     // The whole input, as `filmgrain apply`.
-    int run_all() const;
+    int run_all();
     // Pictures [from, to) written to `part` as raw frames (no header); returns how many.
-    int run_range(int from, int to, const std::string& part) const;
+    int run_range(int from, int to, const std::string& part);
 
 private:
     std::string model_name() const;
+    const VideoInfo& input_info() const;
+    std::unique_ptr<session::ParameterFileFeed> take_feed();
     void synthesize(session::ParameterFileFeed& feed, Session& session, int k, const VideoInfo& info, FrameBuffer& in,
                     FrameBuffer& out) const;
     ApplyOptions o_;
@@ -65,6 +67,8 @@ private:
     SessionOptions session_options_;
     bool override_format_ = false;
     VideoInfo out_override_;
+    std::unique_ptr<session::ParameterFileFeed> feed_;
+    mutable std::optional<VideoInfo> input_info_;  // read on first use (never for the CLI's stdin)
 };
 
 }  // namespace filmgrain::cli

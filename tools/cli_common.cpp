@@ -19,6 +19,18 @@ VideoInfo RawVideoOptions::to_info() const {
     return info;
 }
 
+void parse_arguments(CLI::App& app, const std::vector<std::string>& args) {
+    // CLI11 takes the vector from its back
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    try {
+        app.parse(reversed);
+    } catch (const CLI::RuntimeError&) {
+        throw;
+    } catch (const CLI::ParseError& e) {
+        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
+    }
+}
+
 void RawVideoOptions::add_to(CLI::App* app) {
     app->add_option("--size,-s", size, "raw input size WxH (Y4M input carries its own)");
     app->add_option("--pix-fmt", pix_fmt,

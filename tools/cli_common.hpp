@@ -2,6 +2,7 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "core/frame_buffer.hpp"
 #include "filmgrain/av1_params.hpp"
@@ -23,6 +24,23 @@ FgcFlavour parse_flavour(const std::string& s);
 // The AV1 picture facts (color_config()) of a pixel format, as the tool's AV1 parameter files
 // carry them.
 Av1ColorInfo av1_color_of(const PixelFormat& format, int matrix_coefficients = 2);
+
+// Parses `args` (in order, without a program name) with `app`. CLI11's parse errors become
+// Error(kInvalidArgument) with its message; a command's own exit status (CLI::RuntimeError)
+// passes through to the caller.
+void parse_arguments(CLI::App& app, const std::vector<std::string>& args);
+
+// One subcommand's options from `args` by the definitions the CLI registers for it: how the
+// Python module turns keyword arguments into the CLI's options, checks and messages.
+template <typename Options>
+Options parse_subcommand_arguments(const char* name, void (*add_options)(CLI::App*, Options&),
+                                   const std::vector<std::string>& args) {
+    Options o;
+    CLI::App app(name);
+    add_options(&app, o);
+    parse_arguments(app, args);
+    return o;
+}
 
 void register_apply(CLI::App& app);
 void register_render(CLI::App& app);

@@ -29,16 +29,6 @@ namespace {
 
 
 
-// Frames in a regular file, from its size (Y4M: each frame has a short header); -1 if unknown.
-long long estimate_frame_count(const std::string& path, const VideoInfo& info) {
-    if (path == "-") return -1;
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) return -1;
-    const std::size_t fb = FrameBuffer::frame_bytes(info.width, info.height, info.format);
-    return (long long)(size / (fb + (info.y4m ? 6 : 0)));
-}
-
 std::string percent(double x) {
     char b[32];
     std::snprintf(b, sizeof b, "%.1f%%", 100 * x);
@@ -100,9 +90,10 @@ analysis::AnalysisOptions analysis_options_for(const AnalyzeOptions& o, long lon
 
 AnalysisJob::AnalysisJob(const AnalyzeOptions& options) : o_(options) {
     check_analyze_options(o_);
-    VideoReader reader(o_.input, o_.raw.to_info());
-    info_ = reader.info();
-    total_ = estimate_frame_count(o_.input, info_);
+    // kept for run(): standard input can be opened once
+    reader_ = std::make_unique<VideoReader>(o_.input, o_.raw.to_info());
+    info_ = reader_->info();
+    total_ = frame_count_from_size(o_.input, info_);
     ao_ = analysis_options_for(o_, total_);
 }
 
@@ -137,11 +128,12 @@ std::vector<analysis::PictureObservations> AnalysisJob::observe_range(int from, 
     return analyzer.picture_observations();
 }
 
-int AnalysisJob::run() const {
+int AnalysisJob::run() {
     const AnalyzeOptions& o = o_;
     const analysis::AnalysisOptions& ao = ao_;
     const long long total = total_;
-    VideoReader reader(o.input, o.raw.to_info());
+    if (!reader_) reader_ = std::make_unique<VideoReader>(o.input, o.raw.to_info());
+    VideoReader& reader = *reader_;
     std::unique_ptr<VideoReader> dreader;
     if (!o.denoised.empty()) dreader = std::make_unique<VideoReader>(o.denoised, o.raw.to_info());
     std::unique_ptr<analysis::GrainAnalyzer> analyzer;
@@ -355,19 +347,6 @@ void add_analyze_options(CLI::App* sub, AnalyzeOptions& o) {
     sub->add_option("--max-lag", o.max_lag, "av1: longest AR lag considered (0..3)")->capture_default_str();
     sub->add_flag("--quiet,-q", o.quiet, "no messages on stderr except errors");
     o.raw.add_to(sub);
-}
-
-AnalyzeOptions parse_analyze_arguments(const std::vector<std::string>& args) {
-    AnalyzeOptions o;
-    CLI::App app("analyze");
-    add_analyze_options(&app, o);
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    try {
-        app.parse(reversed);
-    } catch (const CLI::ParseError& e) {
-        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
-    }
-    return o;
 }
 
 void register_analyze(CLI::App& app) {

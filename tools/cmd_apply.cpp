@@ -1,7 +1,6 @@
 // `filmgrain apply`: add grain to a raw YUV or Y4M file from parameters (JSON, SEI payloads).
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -113,8 +112,8 @@ ApplyJob::ApplyJob(const ApplyOptions& options) : o_(options) {
     const ApplyOptions& o = o_;
     check_apply_options(o);
     flavour_ = parse_flavour(o.flavour);
-    session::ParameterFileFeed feed(parameter_files_of(o));
-    model_ = feed.model();
+    feed_ = std::make_unique<session::ParameterFileFeed>(parameter_files_of(o));
+    model_ = feed_->model();
     if (model_ == session::FeedModel::kFgc) {
         if (flavour_ == FgcFlavour::kVfgs && o.single_line_blocks)
             throw Error(ErrorCode::kInvalidArgument,
@@ -138,25 +137,26 @@ std::string ApplyJob::model_name() const {
                                                   : std::string("flavour ") + fgc_flavour_name(flavour_);
 }
 
+const VideoInfo& ApplyJob::input_info() const {
+    if (!input_info_) input_info_ = VideoReader(o_.input, o_.raw.to_info()).info();
+    return *input_info_;
+}
+
 VideoInfo ApplyJob::output_info() const {
-    VideoReader reader(o_.input, o_.raw.to_info());
-    VideoInfo out = reader.info();
+    VideoInfo out = input_info();
     if (override_format_) out.format = out_override_.format;
     return out;
 }
 
-bool ApplyJob::output_y4m() const {
-    if (o_.output != "-") return has_y4m_extension(o_.output);
-    return VideoReader(o_.input, o_.raw.to_info()).info().y4m;
-}
+bool ApplyJob::output_y4m() const { return o_.output != "-" ? has_y4m_extension(o_.output) : input_info().y4m; }
 
-long long ApplyJob::frame_count() const {
-    if (o_.input == "-") return -1;
-    const VideoInfo in = VideoReader(o_.input, o_.raw.to_info()).info();
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(o_.input, ec);
-    if (ec) return -1;
-    return (long long)(size / (FrameBuffer::frame_bytes(in.width, in.height, in.format) + (in.y4m ? 6 : 0)));
+long long ApplyJob::frame_count() const { return frame_count_from_size(o_.input, input_info()); }
+
+// The feed read by the constructor serves the first run; a later one reads the files again
+// (a feed moves through the pictures once).
+std::unique_ptr<session::ParameterFileFeed> ApplyJob::take_feed() {
+    if (feed_) return std::move(feed_);
+    return std::make_unique<session::ParameterFileFeed>(parameter_files_of(o_));
 }
 
 void ApplyJob::synthesize(session::ParameterFileFeed& feed, Session& session, int k, const VideoInfo& info,
@@ -169,8 +169,9 @@ void ApplyJob::synthesize(session::ParameterFileFeed& feed, Session& session, in
     report(o_, k, session.apply(in.view(), out.view(), &fi));
 }
 
-int ApplyJob::run_all() const {
-    session::ParameterFileFeed feed(parameter_files_of(o_));
+int ApplyJob::run_all() {
+    const std::unique_ptr<session::ParameterFileFeed> owned = take_feed();
+    session::ParameterFileFeed& feed = *owned;
     Session session(session_options_);
     const std::string name = model_name();
     return process_video(
@@ -179,11 +180,12 @@ int ApplyJob::run_all() const {
         name.c_str());
 }
 
-int ApplyJob::run_range(int from, int to, const std::string& part) const {
+int ApplyJob::run_range(int from, int to, const std::string& part) {
     if (from < 0 || to < from)
         throw Error(ErrorCode::kInvalidArgument, "picture range [" + std::to_string(from) + ", " + std::to_string(to) +
                                                      ") is not a range of pictures");
-    session::ParameterFileFeed feed(parameter_files_of(o_));
+    const std::unique_ptr<session::ParameterFileFeed> owned = take_feed();
+    session::ParameterFileFeed& feed = *owned;
     Session session(session_options_);
     VideoReader reader(o_.input, o_.raw.to_info());
     const VideoInfo info = reader.info();
@@ -259,19 +261,6 @@ void add_apply_options(CLI::App* sub, ApplyOptions& o) {
         ->check(CLI::Range(0, 1));
     sub->add_flag("--quiet,-q", o.quiet, "no messages on stderr except errors");
     o.raw.add_to(sub);
-}
-
-ApplyOptions parse_apply_arguments(const std::vector<std::string>& args) {
-    ApplyOptions o;
-    CLI::App app("apply");
-    add_apply_options(&app, o);
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    try {
-        app.parse(reversed);
-    } catch (const CLI::ParseError& e) {
-        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
-    }
-    return o;
 }
 
 void register_apply(CLI::App& app) {

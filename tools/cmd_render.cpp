@@ -12,7 +12,7 @@ void register_render(CLI::App& app) {
                                                  "(stills through OpenImageIO, video as Y4M/YUV)");
     add_render_options(sub, *o);
     sub->callback([o]() {
-        const RenderJob job(*o);
+        RenderJob job(*o);
         RenderTotals tot;
         const auto t0 = std::chrono::steady_clock::now();
         job.run_all(tot);

@@ -135,19 +135,6 @@ void add_stats_options(CLI::App* sub, StatsOptions& o) {
     o.raw.add_to(sub);
 }
 
-StatsOptions parse_stats_arguments(const std::vector<std::string>& args) {
-    StatsOptions o;
-    CLI::App app("stats");
-    add_stats_options(&app, o);
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    try {
-        app.parse(reversed);
-    } catch (const CLI::ParseError& e) {
-        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
-    }
-    return o;
-}
-
 void register_stats(CLI::App& app) {
     auto o = std::make_shared<StatsOptions>();
     CLI::App* sub = app.add_subcommand("stats", "grain statistics of a clean and a grainy picture or video");

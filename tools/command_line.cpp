@@ -75,14 +75,10 @@ void run_command_or_throw(const std::vector<std::string>& args) {
                                                          " --help) or the docstrings");
     bool ran_default = false;
     const std::unique_ptr<CLI::App> app = make_app(&ran_default);
-    // CLI11 parses the vector from its back
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
     try {
-        app->parse(reversed);
+        parse_arguments(*app, args);
     } catch (const CLI::RuntimeError& e) {
         if (e.get_exit_code() != 0) throw CommandExit{e.get_exit_code()};
-    } catch (const CLI::ParseError& e) {
-        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
     }
 }
 

@@ -1,7 +1,6 @@
 #include "render_job.hpp"
 
 #include <algorithm>
-#include <filesystem>
 
 #include "filmgrain/error.hpp"
 #include "option_parsing.hpp"
@@ -33,7 +32,19 @@ physical::OutputRegion checked_region(const physical::OutputRegion& roi, int w, 
     return roi;
 }
 
-physical::BooleanModelParams model_params(const RenderOptions& o) {
+
+// Planes without grain (alpha, and chroma with --planes luma) are only resampled (nearest).
+void resample_nearest(const FloatPlane& u, const physical::OutputRegion& r, double zoom, FloatPlane& out) {
+    out = FloatPlane(r.w, r.h);
+    for (int y = 0; y < r.h; y++)
+        for (int x = 0; x < r.w; x++)
+            out.at(x, y) = u.at(std::min(u.width - 1, int((r.x + x + 0.5) / zoom)),
+                                std::min(u.height - 1, int((r.y + y + 0.5) / zoom)));
+}
+
+}  // namespace
+
+physical::BooleanModelParams render_model_params(const RenderOptions& o) {
     physical::BooleanModelParams p;
     p.radius_mean = o.radius;
     p.radius_sigma = o.radius_sigma;
@@ -60,17 +71,6 @@ physical::BooleanModelParams model_params(const RenderOptions& o) {
     }
     return p;
 }
-
-// Planes without grain (alpha, and chroma with --planes luma) are only resampled (nearest).
-void resample_nearest(const FloatPlane& u, const physical::OutputRegion& r, double zoom, FloatPlane& out) {
-    out = FloatPlane(r.w, r.h);
-    for (int y = 0; y < r.h; y++)
-        for (int x = 0; x < r.w; x++)
-            out.at(x, y) = u.at(std::min(u.width - 1, int((r.x + x + 0.5) / zoom)),
-                                std::min(u.height - 1, int((r.y + y + 0.5) / zoom)));
-}
-
-}  // namespace
 
 void RenderTotals::add(const physical::RenderReport& r, double px) {
     pixels += px;
@@ -106,25 +106,13 @@ void add_render_options(CLI::App* sub, RenderOptions& o) {
     o.raw.add_to(sub);
 }
 
-RenderOptions parse_render_arguments(const std::vector<std::string>& args) {
-    RenderOptions o;
-    CLI::App app("render");
-    add_render_options(&app, o);
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    try {
-        app.parse(reversed);
-    } catch (const CLI::ParseError& e) {
-        throw Error(ErrorCode::kInvalidArgument, std::string(e.what()));
-    }
-    return o;
-}
-
-RenderJob::RenderJob(const RenderOptions& options) : o_(options), p_(model_params(options)) {
+RenderJob::RenderJob(const RenderOptions& options) : o_(options), p_(render_model_params(options)) {
     video_ = is_video_path(o_.input);
     const physical::OutputRegion roi = parse_roi(o_.roi);
     if (video_) {
-        VideoReader reader(o_.input, o_.raw.to_info());
-        in_info_ = reader.info();
+        // kept for run_all(): standard input can be opened once
+        reader_ = std::make_unique<VideoReader>(o_.input, o_.raw.to_info());
+        in_info_ = reader_->info();
         region_ = checked_region(roi, in_info_.width, in_info_.height, p_.zoom);
         const ChromaFormat cf = in_info_.format.chroma;
         if ((region_.x & chroma_shift_x(cf) ? 1 : 0) || (region_.y & chroma_shift_y(cf) ? 1 : 0))
@@ -158,16 +146,7 @@ VideoInfo RenderJob::output_info() const {
 
 bool RenderJob::output_y4m() const { return has_y4m_extension(o_.output) || (o_.output == "-" && in_info_.y4m); }
 
-long long RenderJob::frame_count() const {
-    if (!video_) return 1;
-    if (o_.input == "-") return -1;
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(o_.input, ec);
-    if (ec) return -1;
-    const std::size_t fb = FrameBuffer::frame_bytes(in_info_.width, in_info_.height, in_info_.format);
-    // Y4M: the stream header, then "FRAME\n" before each frame (frame parameters are rare)
-    return (long long)(size / (fb + (in_info_.y4m ? 6 : 0)));
-}
+long long RenderJob::frame_count() const { return video_ ? frame_count_from_size(o_.input, in_info_) : 1; }
 
 int RenderJob::tile_alignment_x() const { return video_ ? 1 << chroma_shift_x(in_info_.format.chroma) : 1; }
 int RenderJob::tile_alignment_y() const { return video_ ? 1 << chroma_shift_y(in_info_.format.chroma) : 1; }
@@ -217,7 +196,7 @@ void RenderJob::render_still_tile(int c, const physical::OutputRegion& tile, Flo
                    double(r.w) * r.h);
 }
 
-void RenderJob::run_all(RenderTotals& totals) const {
+void RenderJob::run_all(RenderTotals& totals) {
     const physical::OutputRegion whole{0, 0, region_.w, region_.h};
     if (!video_) {
         StillImage img = *still_;
@@ -225,7 +204,8 @@ void RenderJob::run_all(RenderTotals& totals) const {
         write_still_image(o_.output, img);
         return;
     }
-    VideoReader reader(o_.input, o_.raw.to_info());
+    if (!reader_) reader_ = std::make_unique<VideoReader>(o_.input, o_.raw.to_info());
+    VideoReader& reader = *reader_;
     VideoWriter writer(o_.output, output_info(), output_y4m());
     FrameBuffer frame, out(region_.w, region_.h, in_info_.format);
     for (int k = 0; reader.read(frame); k++) {

@@ -27,10 +27,12 @@ struct RenderOptions {
     RawVideoOptions raw;
 };
 
-// The render subcommand's options (shared by the CLI and the Python module's parser).
+// The render subcommand's options (the CLI's, and through parse_subcommand_arguments the Python module's).
 void add_render_options(CLI::App* sub, RenderOptions& o);
 // Parses `args` (the render subcommand's arguments: input, -o, options) as the CLI does.
-RenderOptions parse_render_arguments(const std::vector<std::string>& args);
+
+// The model's parameters from the options, checked (Error(kInvalidArgument) naming the option).
+physical::BooleanModelParams render_model_params(const RenderOptions& o);
 
 // What the renderer did, summed over parts (the CLI's report line).
 struct RenderTotals {
@@ -73,7 +75,7 @@ public:
     void render_still_tile(int c, const physical::OutputRegion& tile, FloatPlane& out, RenderTotals& totals) const;
 
     // The whole job, as `filmgrain render` runs it.
-    void run_all(RenderTotals& totals) const;
+    void run_all(RenderTotals& totals);
 
 private:
     RenderOptions o_;
@@ -81,6 +83,7 @@ private:
     bool video_ = false;
     VideoInfo in_info_;
     std::unique_ptr<StillImage> still_;
+    std::unique_ptr<VideoReader> reader_;  // video: opened by the constructor, read by run_all()
     physical::OutputRegion region_;
 };
 

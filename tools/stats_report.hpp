@@ -20,7 +20,6 @@ struct StatsOptions {
 };
 
 void add_stats_options(CLI::App* sub, StatsOptions& o);
-StatsOptions parse_stats_arguments(const std::vector<std::string>& args);
 // The JSON `filmgrain stats --json` prints. Throws Error naming the file or option.
 nlohmann::json grain_statistics_report(const StatsOptions& options);
 nlohmann::json statistics_json(const FloatPlane& clean, const FloatPlane& grain, const StatsOptions& options);

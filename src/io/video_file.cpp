@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cstring>
+#include <filesystem>
 #include <utility>
 #include <vector>
 
@@ -73,6 +74,15 @@ void VideoReader::read_y4m_header() {
         info_.fps_den = h.fps_den;
     }
     info_.y4m_extra = h.extra;
+}
+
+long long frame_count_from_size(const std::string& path, const VideoInfo& info) {
+    if (path == "-") return -1;
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) return -1;
+    const std::size_t fb = FrameBuffer::frame_bytes(info.width, info.height, info.format);
+    return (long long)(size / (fb + (info.y4m ? 6 : 0)));
 }
 
 bool VideoReader::skip_frames(int n) {

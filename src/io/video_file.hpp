@@ -72,5 +72,8 @@ private:
 };
 
 bool has_y4m_extension(const std::string& path);
+// Frames in a regular file of this format, from its size (Y4M: "FRAME\n" before each frame);
+// -1 for standard input or a file whose size cannot be read.
+long long frame_count_from_size(const std::string& path, const VideoInfo& info);
 
 }  // namespace filmgrain

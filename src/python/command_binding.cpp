@@ -133,7 +133,7 @@ void register_commands(py::module_& m) {
     }, "path"_a, "Pictures in output order of an H.264 / H.265 / H.266 / AV1 elementary stream (a metadata scan).");
 
     m.def("stats_files", [](const std::vector<std::string>& args) {
-        const cli::StatsOptions o = cli::parse_stats_arguments(args);
+        const cli::StatsOptions o = cli::parse_subcommand_arguments<cli::StatsOptions>("stats", cli::add_stats_options, args);
         nlohmann::json j;
         {
             py::gil_scoped_release release;
@@ -144,7 +144,7 @@ void register_commands(py::module_& m) {
 
     m.def("stats_arrays", [](const py::array& clean, const py::array& grainy, const std::vector<std::string>& args,
                              int bit_depth) {
-        cli::StatsOptions o = cli::parse_stats_arguments(args);
+        cli::StatsOptions o = cli::parse_subcommand_arguments<cli::StatsOptions>("stats", cli::add_stats_options, args);
         const FloatPlane c = float_plane_of(clean, bit_depth, "clean"), g = float_plane_of(grainy, bit_depth, "grainy");
         if (c.width != g.width || c.height != g.height)
             throw Error(ErrorCode::kInvalidArgument, "grainy is " + std::to_string(g.width) + "x" + std::to_string(g.height) +
@@ -159,23 +159,9 @@ void register_commands(py::module_& m) {
 
     m.def("render_array", [](const py::array& plane, const std::vector<std::string>& args, int bit_depth, int frame, int plane_index) {
         // the render options of a still, applied to one grey plane with the seed of (frame, plane)
-        const cli::RenderOptions o = cli::parse_render_arguments(args);
+        const cli::RenderOptions o = cli::parse_subcommand_arguments<cli::RenderOptions>("render", cli::add_render_options, args);
         const FloatPlane u = float_plane_of(plane, bit_depth, "plane");
-        std::vector<std::string> still_args = args;
-        physical::BooleanModelParams p;
-        p.radius_mean = o.radius;
-        p.radius_sigma = o.radius_sigma;
-        p.filter_sigma = o.filter_sigma;
-        p.zoom = o.zoom;
-        if (o.samples) p.samples = *o.samples;
-        if (o.tolerance) p.tolerance = *o.tolerance;
-        p.threads = o.threads;
-        p.seed = o.seed;
-        if (o.algorithm == "pixel-wise") p.algorithm = physical::BooleanAlgorithm::kPixelWise;
-        else if (o.algorithm == "grain-wise") p.algorithm = physical::BooleanAlgorithm::kGrainWise;
-        else if (o.algorithm != "auto")
-            throw Error(ErrorCode::kInvalidArgument, "--algorithm '" + o.algorithm + "' (allowed auto, pixel-wise, grain-wise)");
-        physical::validate(p);
+        const physical::BooleanModelParams p = cli::render_model_params(o);
         physical::OutputRegion r;
         r.w = physical::zoomed_size(u.width, p.zoom);
         r.h = physical::zoomed_size(u.height, p.zoom);
@@ -189,7 +175,7 @@ void register_commands(py::module_& m) {
 
     py::class_<cli::RenderJob>(m, "RenderJob", "`filmgrain render` cut into frames and tiles (distributed render).")
         .def(py::init([](const std::vector<std::string>& args) {
-            return std::make_unique<cli::RenderJob>(cli::parse_render_arguments(args));
+            return std::make_unique<cli::RenderJob>(cli::parse_subcommand_arguments<cli::RenderOptions>("render", cli::add_render_options, args));
         }), "args"_a)
         .def_property_readonly("video", &cli::RenderJob::video)
         .def_property_readonly("output_width", &cli::RenderJob::output_width)
@@ -237,12 +223,12 @@ void register_commands(py::module_& m) {
 
     py::class_<cli::ApplyJob>(m, "ApplyJob", "`filmgrain apply` cut into ranges of pictures (distributed apply).")
         .def(py::init([](const std::vector<std::string>& args) {
-            return std::make_unique<cli::ApplyJob>(cli::parse_apply_arguments(args));
+            return std::make_unique<cli::ApplyJob>(cli::parse_subcommand_arguments<cli::ApplyOptions>("apply", cli::add_apply_options, args));
         }), "args"_a)
         .def_property_readonly("output_info", &cli::ApplyJob::output_info)
         .def_property_readonly("output_y4m", &cli::ApplyJob::output_y4m)
         .def_property_readonly("frame_count", &cli::ApplyJob::frame_count)
-        .def("run_range", [](const cli::ApplyJob& j, int from, int to, const std::string& part) {
+        .def("run_range", [](cli::ApplyJob& j, int from, int to, const std::string& part) {
             py::gil_scoped_release release;
             return j.run_range(from, to, part);
         }, "first"_a, "end"_a, "part"_a, "Pictures [first, end) as raw frames into `part`; returns how many.");
@@ -250,7 +236,7 @@ void register_commands(py::module_& m) {
 #ifdef FILMGRAIN_HAVE_ANALYSIS
     py::class_<cli::AnalysisJob>(m, "AnalysisJob", "`filmgrain analyze` cut into ranges of pictures (distributed analyze).")
         .def(py::init([](const std::vector<std::string>& args) {
-            return std::make_unique<cli::AnalysisJob>(cli::parse_analyze_arguments(args));
+            return std::make_unique<cli::AnalysisJob>(cli::parse_subcommand_arguments<cli::AnalyzeOptions>("analyze", cli::add_analyze_options, args));
         }), "args"_a)
         .def_property_readonly("frame_count", &cli::AnalysisJob::frame_count)
         .def_property_readonly("frame_step", &cli::AnalysisJob::frame_step)

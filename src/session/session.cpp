@@ -265,6 +265,14 @@ struct Session::Impl {
         return applied;
     }
 
+    // Callers that pass no ids count pictures from 0 (POC k, idr_pic_id 0).
+    FrameInfo info_or_next(const FrameInfo* info) const {
+        if (info) return *info;
+        FrameInfo fi;
+        fi.ids.poc = pictures_applied;
+        return fi;
+    }
+
     static std::string chroma_format_label(ChromaFormat f) {
         switch (f) {
         case ChromaFormat::k400: return "4:0:0";
@@ -347,9 +355,7 @@ void Session::reset() {
 
 void Session::skip_picture(const FrameInfo* info) {
     Impl& s = *impl_;
-    FrameInfo fi;
-    if (info) fi = *info;
-    else fi.ids.poc = s.pictures_applied;
+    const FrameInfo fi = s.info_or_next(info);
     switch (s.model) {
     case Impl::Model::kNone:
     case Impl::Model::kAv1: break;
@@ -370,9 +376,7 @@ void Session::skip_picture(const FrameInfo* info) {
 
 ApplyResult Session::apply(const FrameView& src, const FrameView& dst, const FrameInfo* info) {
     Impl& s = *impl_;
-    FrameInfo fi;
-    if (info) fi = *info;
-    else fi.ids.poc = s.pictures_applied;
+    const FrameInfo fi = s.info_or_next(info);
     const int dst_bit_depth = s.options.flavour == FgcFlavour::kVfgs && s.options.vfgs_output_bit_depth
                                   ? s.options.vfgs_output_bit_depth
                                   : src.bit_depth;

@@ -189,3 +189,20 @@ TEST_F(PhysicalCli, TradeoffWritesTableWithEveryMethod) {
 }
 
 }  // namespace
+
+// Standard input is read once: the job that learns the clip's shape must hand its reader on
+// (a second open of "-" finds no Y4M header), for render and for analyze.
+TEST_F(PhysicalCli, RenderAndAnalyzeReadStandardInput) {
+    std::string log;
+    ASSERT_EQ(run("render - -o " + p("stdin.y4m") + " --samples 16 -q < " + p("in.y4m"), &log), 0) << log;
+    ASSERT_EQ(run("render " + p("in.y4m") + " -o " + p("file.y4m") + " --samples 16 -q", &log), 0) << log;
+    std::ifstream a(dir / "stdin.y4m", std::ios::binary), b(dir / "file.y4m", std::ios::binary);
+    const std::string from_stdin((std::istreambuf_iterator<char>(a)), {}), from_file((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(from_stdin.empty());
+    EXPECT_EQ(from_stdin, from_file);
+    const int rc = run("analyze - --model av1 --spatial -q -o " + p("stdin.json") + " < " + p("in.y4m"), &log);
+    if (log.find("needs OpenCV") == std::string::npos) {
+        ASSERT_EQ(rc, 0) << log;
+        EXPECT_TRUE(fs::exists(dir / "stdin.json"));
+    }
+}

@@ -210,18 +210,18 @@ def apply_job(args: Sequence[str], client: Any, *, frames_per_task: int = 0, pro
             futures = [client.submit(_decode_range_task, args, a, b, os.path.join(parts, f"{a:09d}.yuv"), pure=False)
                        for a, b in ranges]
             _gather_in_order(client, futures, _Progress("decode", len(futures), progress))
-            # the header of `filmgrain decode`'s output, from its first picture
+            # the size, format and rate of `filmgrain decode`'s output, from its first picture
             head = os.path.join(parts, "head.y4m")
             a = list(args)
             o = a.index("-o") if "-o" in a else a.index("--output")
             a[o + 1] = head
             fmt = a[a.index("--format") + 1] if "--format" in a[:-1] else ""
-            y4m = fmt == "y4m" or (not fmt and not output.lower().endswith(".yuv"))
             if fmt:
                 del a[a.index("--format"):a.index("--format") + 2]
             _filmgrain.run_command(["decode", *a, "--format", "y4m", "--frames", "1", "--no-grain", "--quiet"])
-            header = open(head, "rb").readline()
-            _join_raw(output, [os.path.join(parts, f"{a:09d}.yuv") for a, _ in ranges], header if y4m else None)
+            info = _filmgrain.VideoReader(head).info
+            y4m = fmt == "y4m" or (not fmt and not output.lower().endswith(".yuv"))
+            _join_frames(output, info, y4m, [os.path.join(parts, f"{a:09d}.yuv") for a, _ in ranges])
         else:
             job = _filmgrain.ApplyJob(list(args))
             count = job.frame_count
@@ -232,47 +232,21 @@ def apply_job(args: Sequence[str], client: Any, *, frames_per_task: int = 0, pro
             futures = [client.submit(_apply_range_task, args, a, b, os.path.join(parts, f"{a:09d}.yuv"), pure=False)
                        for a, b in ranges]
             _gather_in_order(client, futures, _Progress("apply", len(futures), progress))
-            info = job.output_info
-            writer = _filmgrain.VideoWriter(output, info, job.output_y4m)
-            size = info.frame_bytes
-            for a, _ in ranges:
-                with open(os.path.join(parts, f"{a:09d}.yuv"), "rb") as f:
-                    while chunk := f.read(size):
-                        writer.write_raw(chunk, info)
-            writer.commit()
+            _join_frames(output, job.output_info, job.output_y4m,
+                         [os.path.join(parts, f"{a:09d}.yuv") for a, _ in ranges])
     finally:
         shutil.rmtree(parts, ignore_errors=True)
 
 
-def _join_raw(output: str, parts: list, y4m_header: bytes | None) -> None:
-    # decode's Y4M is its header line, then FRAME and the raw samples of each picture
-    frame_bytes = None
-    if y4m_header is not None:
-        fields = y4m_header.decode("ascii").split()
-        w = int(next(f[1:] for f in fields if f.startswith("W")))
-        h = int(next(f[1:] for f in fields if f.startswith("H")))
-        c = next((f[1:] for f in fields if f.startswith("C")), "420jpeg")
-        bps = 2 if ("p1" in c) else 1
-        cw, ch = (w, h) if c.startswith("444") else ((w + 1) // 2, h) if c.startswith("422") else \
-            (0, 0) if c.startswith("mono") else ((w + 1) // 2, (h + 1) // 2)
-        frame_bytes = (w * h + 2 * cw * ch) * bps
-    tmp = f"{output}.{uuid.uuid4().hex}.tmp"
-    try:
-        with open(tmp, "wb") as out:
-            if y4m_header is not None:
-                out.write(y4m_header)
-            for p in parts:
-                with open(p, "rb") as f:
-                    if y4m_header is None:
-                        shutil.copyfileobj(f, out)
-                        continue
-                    while chunk := f.read(frame_bytes):
-                        out.write(b"FRAME\n")
-                        out.write(chunk)
-        os.replace(tmp, output)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+def _join_frames(output: str, info: Any, y4m: bool, parts: list) -> None:
+    # the parts' raw frames, in order, through the writer the commands use (its header, and
+    # the output appears only when complete)
+    writer = _filmgrain.VideoWriter(output, info, y4m)
+    for p in parts:
+        with open(p, "rb") as f:
+            while chunk := f.read(info.frame_bytes):
+                writer.write_raw(chunk, info)
+    writer.commit()
 
 
 # ----------------------------------------------------------------------------- analyze
