@@ -35,9 +35,12 @@ def main():
     y4m(f"{d}/apply.y4m", 1920, 1080, 60, seed=1)
     sei = "conformance/rdd5_352x288_420p8/frame0.fgc.bin"
     jobs = {
-        "render 4 x 256x256, N=800": (distributed.render_job,
-                                     [f"{d}/render.y4m", "-o", f"{d}/r.y4m", "--samples", "800", "--threads", "1", "-q"],
-                                     {"tile": 128}),
+        "render 4 x 256x256, N=800, whole frames": (distributed.render_job,
+                                                   [f"{d}/render.y4m", "-o", f"{d}/r.y4m", "--samples", "800",
+                                                    "--threads", "1", "-q"], {"tile": 256}),
+        "render 4 x 256x256, N=800, 128-pixel tiles": (distributed.render_job,
+                                                      [f"{d}/render.y4m", "-o", f"{d}/r.y4m", "--samples", "800",
+                                                       "--threads", "1", "-q"], {"tile": 128}),
         "apply 60 x 1080p rdd5": (distributed.apply_job,
                                   ["-i", f"{d}/apply.y4m", "-o", f"{d}/a.y4m", "--sei", sei, "--threads", "1", "-q"],
                                   {"frames_per_task": 8}),
