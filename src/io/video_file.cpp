@@ -85,23 +85,30 @@ long long frame_count_from_size(const std::string& path, const VideoInfo& info) 
     return (long long)(size / (fb + (info.y4m ? 6 : 0)));
 }
 
+// A Y4M frame's "FRAME..." line: false at a clean end of the file; throws on a malformed
+// line or one the file ends in.
+bool VideoReader::read_y4m_frame_line() {
+    int c = in_->get();
+    if (c < 0) return false;
+    std::string line(1, char(c));
+    while ((c = in_->get()) >= 0 && c != '\n') {
+        line.push_back(char(c));
+        if (line.size() > kMaxY4mHeaderBytes) break;
+    }
+    try {
+        parse_y4m_frame_header(line);
+    } catch (const Error& e) {
+        throw Error(ErrorCode::kIo, "'" + path_ + "': frame " + std::to_string(frames_) + ": " + e.what());
+    }
+    if (c < 0)
+        throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " has no data");
+    return true;
+}
+
 bool VideoReader::skip_frames(int n) {
     const std::size_t bytes = FrameBuffer::frame_bytes(info_.width, info_.height, info_.format);
     for (int i = 0; i < n; i++) {
-        if (info_.y4m) {
-            int c = in_->get();
-            if (c < 0) return false;
-            std::string line(1, char(c));
-            while ((c = in_->get()) >= 0 && c != '\n') {
-                line.push_back(char(c));
-                if (line.size() > kMaxY4mHeaderBytes) break;
-            }
-            try {
-                parse_y4m_frame_header(line);
-            } catch (const Error& e) {
-                throw Error(ErrorCode::kIo, "'" + path_ + "': frame " + std::to_string(frames_) + ": " + e.what());
-            }
-        }
+        if (info_.y4m && !read_y4m_frame_line()) return false;
         if (in_->skip(bytes) != bytes) {
             if (!info_.y4m) return false;
             throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " is incomplete");
@@ -112,22 +119,7 @@ bool VideoReader::skip_frames(int n) {
 }
 
 bool VideoReader::read(FrameBuffer& frame) {
-    if (info_.y4m) {
-        int c = in_->get();
-        if (c < 0) return false;
-        std::string line(1, char(c));
-        while ((c = in_->get()) >= 0 && c != '\n') {
-            line.push_back(char(c));
-            if (line.size() > kMaxY4mHeaderBytes) break;
-        }
-        try {
-            parse_y4m_frame_header(line);
-        } catch (const Error& e) {
-            throw Error(ErrorCode::kIo, "'" + path_ + "': frame " + std::to_string(frames_) + ": " + e.what());
-        }
-        if (c < 0)
-            throw Error(ErrorCode::kIo, "'" + path_ + "' is truncated: frame " + std::to_string(frames_) + " has no data");
-    }
+    if (info_.y4m && !read_y4m_frame_line()) return false;
     const std::size_t want = FrameBuffer::frame_bytes(info_.width, info_.height, info_.format);
     // A regular file tells how much it holds: a frame it cannot hold fails here, before the
     // frame is allocated.

@@ -45,6 +45,7 @@ public:
 
 private:
     void read_y4m_header();
+    bool read_y4m_frame_line();
     std::unique_ptr<InputFile> in_;
     std::string path_;
     VideoInfo info_;
