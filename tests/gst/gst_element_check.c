@@ -57,9 +57,15 @@ static void run_result_clear(RunResult* r) {
     memset(r, 0, sizeof *r);
 }
 
-static void collect_messages(GstBus* bus, RunResult* r) {
+/* Pops the errors and warnings on the bus. With `await_error`, waits (up to 10 s) until an
+ * error has arrived: a bin fails its state change when a child posts an error, and the
+ * caller's get_state can return before that message has been forwarded to the pipeline's
+ * bus (seen under ASan as an intermittent "no error"). */
+static void collect_messages(GstBus* bus, RunResult* r, gboolean await_error) {
     GstMessage* m;
-    while ((m = gst_bus_pop_filtered(bus, GST_MESSAGE_ERROR | GST_MESSAGE_WARNING)) != NULL) {
+    const GstMessageType types = GST_MESSAGE_ERROR | GST_MESSAGE_WARNING;
+    while ((m = await_error && !r->error ? gst_bus_timed_pop_filtered(bus, 10 * GST_SECOND, types)
+                                         : gst_bus_pop_filtered(bus, types)) != NULL) {
         GError* e = NULL;
         gchar* debug = NULL;
         if (GST_MESSAGE_TYPE(m) == GST_MESSAGE_ERROR) {
@@ -101,7 +107,7 @@ static void pull(GstElement* pipeline, RunResult* r, guint max) {
         gst_buffer_unmap(b, &map);
         gst_sample_unref(s);
     }
-    collect_messages(bus, r);
+    collect_messages(bus, r, FALSE);
     gst_object_unref(bus);
     gst_object_unref(sink);
 }
@@ -134,7 +140,7 @@ static RunResult run_from(const gchar* props, int start_frame) {
     if (gst_element_get_state(pipeline, NULL, NULL, 5 * GST_SECOND) == GST_STATE_CHANGE_FAILURE) {
         /* an error before the first picture (a bad property): the result carries it */
         GstBus* bus = gst_element_get_bus(pipeline);
-        collect_messages(bus, &r);
+        collect_messages(bus, &r, TRUE);
         gst_object_unref(bus);
         gst_element_set_state(pipeline, GST_STATE_NULL);
         gst_object_unref(pipeline);
