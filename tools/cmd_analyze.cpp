@@ -209,9 +209,9 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
             rp.power = analysis::mean_power(analyzer->observations()[c], 0, 255);
             std::ostringstream s;
             if (r.present) {
-                s << r.chosen_order << " interval(s), RMS error " << pct(r.error) << " (by count: " << list_percent(r.error_by_order)
-                  << "); " << r.cutoff_pairs << " cut-off pair(s), plane-resolution cut-offs";
-                for (const auto& pr : r.plane_cutoffs) s << " (" << pr.first << "," << pr.second << ")";
+                s << r.chosen_order << " interval(s), worst band error " << pct(r.error) << " (by count: "
+                  << list_percent(r.error_by_order) << "); " << r.cutoff_pairs << " cut-off pair(s), signalled cut-offs";
+                for (const auto& pr : r.cutoffs) s << " (" << pr.first << "," << pr.second << ")";
                 s << "; log2_scale_factor " << fgc_params.log2_scale_factor;
             }
             if (!r.note.empty()) s << (r.present ? "; " : "") << r.note;

@@ -29,7 +29,8 @@ struct Av1ComponentReport {
     bool present = false;
     LevelCurve curve;
     std::vector<LevelPoint> points;  // levels in sample units
-    double error = 0.0;
+    double error = 0.0;    // worst band error of the points (worst_band_error)
+    bool accurate = true;  // error within the target's accuracy
     std::vector<double> residual_by_lag;  // normalized residual variance for lags 0..3
     std::vector<double> spectrum_error_by_lag;  // spectrum deviation from the longest lag's model
     double lag_tolerance = 0.0;                 // the deviation accepted (at least the split-half noise)

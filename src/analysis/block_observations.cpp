@@ -52,6 +52,15 @@ double detrended_sigma(const cv::Mat& block, cv::Mat* residual) {
     return std::sqrt(ss / (w * h - 3));
 }
 
+cv::Mat block_dct_power(const cv::Mat& grain_block) {
+    cv::Mat residual, coeffs, sq, sq64;
+    detrended_sigma(grain_block, &residual);
+    cv::dct(residual, coeffs);
+    cv::multiply(coeffs, coeffs, sq);
+    sq.convertTo(sq64, CV_64F);
+    return sq64;
+}
+
 namespace {
 
 // Non-overlapping size x size blocks lying entirely in the usable area, placed greedily in
@@ -176,18 +185,12 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
         out.ar.n = out.ar_halves[0].n + out.ar_halves[1].n;
     }
     if (request.dct_power) {
-        cv::Mat coeffs, sq;
         for (const cv::Rect& r : place_flat_blocks(integral, w, h, kDctBlock)) {
             double mn, mx;
             cv::minMaxLoc(source(r), &mn, &mx);
             if (mn <= 0 || mx >= maxv) continue;
             const int bin = std::clamp(int(cv::mean(denoised(r))[0] * to8) / (256 / kPowerBins), 0, kPowerBins - 1);
-            detrended_sigma(grain(r), &residual);
-            cv::dct(residual, coeffs);
-            cv::multiply(coeffs, coeffs, sq);
-            cv::Mat sq64;
-            sq.convertTo(sq64, CV_64F);
-            out.dct_power[bin] += sq64;
+            out.dct_power[bin] += block_dct_power(grain(r));
             out.dct_blocks[bin]++;
         }
     }

@@ -78,4 +78,8 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
 // Grain standard deviation of a block after removing its least-squares plane.
 double detrended_sigma(const cv::Mat& block, cv::Mat* residual);
 
+// Squared 64x64 DCT of a grain block after removing its plane (CV_64F): what the FGC
+// observations sum, and what the cut-off calibration measures on synthesized grain.
+cv::Mat block_dct_power(const cv::Mat& grain_block);
+
 }  // namespace filmgrain::analysis

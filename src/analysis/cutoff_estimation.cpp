@@ -1,51 +1,48 @@
 #include "analysis/cutoff_estimation.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
 
 namespace filmgrain::analysis {
 
-int fit_power_step(const std::array<double, kDctBlock>& p) {
-    // Frequencies 1..63; DC is removed by the planar detrending and carries no information.
-    std::array<double, kDctBlock + 1> s{}, ss{};
-    for (int u = 1; u < kDctBlock; u++) {
-        s[u + 1] = s[u] + p[u];
-        ss[u + 1] = ss[u] + p[u] * p[u];
-    }
-    auto sse = [&](int a, int b) {  // [a, b)
-        if (b <= a) return 0.0;
-        const double sum = s[b] - s[a];
-        return (ss[b] - ss[a]) - sum * sum / (b - a);
-    };
-    double best = std::numeric_limits<double>::infinity();
-    int best_last = kDctBlock - 1;
-    for (int last = 4; last < kDctBlock; last++) {
-        const double e = sse(1, last + 1) + sse(last + 1, kDctBlock);
-        // A step must go down: a band above the "cut-off" as strong as below is no cut-off.
-        const double low = (s[last + 1] - s[1]) / last;
-        const double high = last + 1 < kDctBlock ? (s[kDctBlock] - s[last + 1]) / (kDctBlock - 1 - last) : 0.0;
-        if (high > 0.5 * low) continue;
-        if (e < best) {
-            best = e;
-            best_last = last;
-        }
-    }
-    return best_last;
-}
-
-CutoffEstimate estimate_cutoffs(const cv::Mat& power) {
-    CutoffEstimate c;
+void power_marginals(const cv::Mat& power, PowerMarginal& horizontal, PowerMarginal& vertical) {
+    horizontal.fill(0.0);
+    vertical.fill(0.0);
+    // Frequency 0 along an axis carries the planar trend's leftovers, not grain.
     for (int v = 1; v < kDctBlock; v++)
         for (int u = 1; u < kDctBlock; u++) {
             const double p = power.at<double>(v, u);
-            c.horizontal_power[u] += p;
-            c.vertical_power[v] += p;
+            horizontal[u] += p;
+            vertical[v] += p;
         }
-    // Kept frequencies 0..4(c+1)-1, so the last kept index L gives c = (L + 1) / 4 - 1.
-    auto to_cutoff = [](int last) { return std::clamp(int(std::lround((last + 1) / 4.0)) - 1, 2, 14); };
-    c.horizontal = to_cutoff(fit_power_step(c.horizontal_power));
-    c.vertical = to_cutoff(fit_power_step(c.vertical_power));
+    double sh = 0, sv = 0;
+    for (int i = 0; i < kDctBlock; i++) sh += horizontal[i], sv += vertical[i];
+    for (int i = 0; i < kDctBlock; i++) {
+        if (sh > 0) horizontal[i] /= sh;
+        if (sv > 0) vertical[i] /= sv;
+    }
+}
+
+namespace {
+
+int nearest_model(const PowerMarginal& observed, const std::array<PowerMarginal, kMaxCutoff + 1>& models, double* mismatch) {
+    int best = 8;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (int c = kMinCutoff; c <= kMaxCutoff; c++) {
+        double d = 0;
+        for (int i = 1; i < kDctBlock; i++) d += (observed[i] - models[c][i]) * (observed[i] - models[c][i]);
+        if (d < best_d) best_d = d, best = c;
+    }
+    if (mismatch) *mismatch = best_d;
+    return best;
+}
+
+}  // namespace
+
+CutoffEstimate match_cutoffs(const cv::Mat& power, const CutoffModels& models) {
+    CutoffEstimate c;
+    power_marginals(power, c.horizontal_power, c.vertical_power);
+    c.horizontal = nearest_model(c.horizontal_power, models.horizontal, &c.horizontal_mismatch);
+    c.vertical = nearest_model(c.vertical_power, models.vertical, &c.vertical_mismatch);
     return c;
 }
 

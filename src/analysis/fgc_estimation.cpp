@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "analysis/grain_level.hpp"
+#include "analysis/plane_image.hpp"
 #include "core/frame_buffer.hpp"
 #include "fgc/fgc_stream_synthesis.hpp"
 
@@ -13,10 +15,13 @@ namespace filmgrain::analysis {
 namespace {
 
 constexpr int kCalibrationSize = 256;
+constexpr int kSpectrumPlaneSize = 512;  // each plane of the cut-off models: 64 blocks of 64x64
 constexpr int kMinDctBlocksPerInterval = 8;
 
-// Grain level per unit of comp_model_value[0] for one component, cut-off pair and scale
-// factor, measured on a flat mid-grey picture synthesized by the target flavour.
+// The target synthesis measured on flat mid-grey pictures: grain level per unit of
+// comp_model_value[0] (for a component, cut-off pair, scale factor and value), and the
+// marginal spectra per cut-off. Measured exactly as the observations are, so the
+// measurement's biases cancel.
 class FgcCalibration {
 public:
     explicit FgcCalibration(const FgcTarget& t) : t_(t), clean_(kCalibrationSize, kCalibrationSize, {t.chroma, t.bit_depth}) {
@@ -26,6 +31,40 @@ public:
     double gain(int c, int h, int v, int lsf, int value) {
         const auto key = std::make_tuple(c, h, v, lsf, value);
         if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+        synthesize(clean_, grainy_, c, h, v, lsf, value);
+        const double g = measure_grain_level(grainy_.view(), clean_.view(), c) / value;
+        cache_[key] = g;
+        return g;
+    }
+    const CutoffModels& cutoff_models(int c) {
+        if (models_[c]) return *models_[c];
+        const int w = kSpectrumPlaneSize << (c > 0 ? chroma_shift_x(t_.chroma) : 0);
+        const int h = kSpectrumPlaneSize << (c > 0 ? chroma_shift_y(t_.chroma) : 0);
+        FrameBuffer clean(w, h, {t_.chroma, t_.bit_depth}), grainy(w, h, {t_.chroma, t_.bit_depth});
+        fill_frame(clean.view(), 128 << (t_.bit_depth - 8));
+        CutoffModels m;
+        for (int cut = kMinCutoff; cut <= kMaxCutoff; cut++) {
+            // About 5 code values of grain: no clipping, rounding small beside it.
+            const double per_value = gain(c, cut, cut, 5, 32 << (t_.bit_depth - 8));
+            const int value = std::clamp(int(std::lround(5.0 * (1 << (t_.bit_depth - 8)) / per_value)), 1,
+                                         255 << (t_.bit_depth - 8));
+            synthesize(clean, grainy, c, cut, cut, 5, value);
+            const cv::Mat grain = plane_to_float(grainy.view(), c) - plane_to_float(clean.view(), c);
+            cv::Mat power = cv::Mat::zeros(kDctBlock, kDctBlock, CV_64F);
+            for (int y = 0; y + kDctBlock <= grain.rows; y += kDctBlock)
+                for (int x = 0; x + kDctBlock <= grain.cols; x += kDctBlock)
+                    power += block_dct_power(grain(cv::Rect(x, y, kDctBlock, kDctBlock)));
+            PowerMarginal hm, vm;
+            power_marginals(power, hm, vm);
+            m.horizontal[cut] = hm;
+            m.vertical[cut] = vm;
+        }
+        models_[c] = m;
+        return *models_[c];
+    }
+
+private:
+    void synthesize(FrameBuffer& clean, FrameBuffer& grainy, int c, int h, int v, int lsf, int value) const {
         FgcParams p;
         p.log2_scale_factor = lsf;
         p.comp[c].comp_model_present_flag = true;
@@ -39,39 +78,15 @@ public:
         o.flavour = t_.flavour;
         FgcStreamSynthesis synth(o);
         synth.receive_sei(p);
-        synth.apply(clean_.view(), grainy_.view(), FgcPictureIds{0, 0});
-        const double g = measure_grain_level(grainy_.view(), clean_.view(), c) / value;
-        cache_[key] = g;
-        return g;
+        synth.apply(clean.view(), grainy.view(), FgcPictureIds{0, 0});
     }
-
-private:
     FgcTarget t_;
     FrameBuffer clean_, grainy_;
     std::map<std::tuple<int, int, int, int, int>, double> cache_;
+    std::array<std::optional<CutoffModels>, 3> models_;
 };
 
-// Signalled cut-off for a plane-resolution one: chroma of 4:2:0 (both axes) and 4:2:2
-// (horizontal) is described at luma resolution and doubled by the decoder (7.3.1).
-int signalled_cutoff(int plane_cutoff, bool doubled) {
-    if (!doubled) return std::clamp(plane_cutoff, 2, 14);
-    int best = 2;
-    for (int c = 2; c <= 14; c++)
-        if (std::abs(std::clamp(2 * c, 2, 14) - plane_cutoff) < std::abs(std::clamp(2 * best, 2, 14) - plane_cutoff))
-            best = c;
-    return best;
-}
-
-}  // namespace
-
-FgcParams fgc_no_grain() {
-    FgcParams p;
-    p.film_grain_characteristics_cancel_flag = true;
-    return p;
-}
-
-FgcParams fgc_params_from_levels(const std::array<FgcComponentLevels, 3>& levels, const FgcTarget& target) {
-    FgcCalibration cal(target);
+FgcParams params_from_levels(const std::array<FgcComponentLevels, 3>& levels, const FgcTarget& target, FgcCalibration& cal) {
     const int max_scale = 255 << (target.bit_depth - 8);
     const int num_comp = target.chroma == ChromaFormat::k400 ? 1 : 3;
     struct Item {
@@ -83,21 +98,27 @@ FgcParams fgc_params_from_levels(const std::array<FgcComponentLevels, 3>& levels
     std::vector<Item> items;
     for (int c = 0; c < num_comp; c++)
         for (std::size_t i = 0; i < levels[c].intervals.size(); i++) {
-            const bool dx = c > 0 && target.chroma != ChromaFormat::k444;
-            const bool dy = c > 0 && target.chroma == ChromaFormat::k420;
-            const auto [ph, pv] = levels[c].plane_cutoffs[i];
-            items.push_back({c, i, signalled_cutoff(ph, dx), signalled_cutoff(pv, dy), levels[c].intervals[i].level});
+            const auto [h, v] = levels[c].cutoffs[i];
+            items.push_back({c, i, std::clamp(h, kMinCutoff, kMaxCutoff), std::clamp(v, kMinCutoff, kMaxCutoff),
+                             levels[c].intervals[i].level});
         }
     if (items.empty()) return fgc_no_grain();
-    // log2_scale_factor: the largest (finest) that still fits every value in its range.
+    // The value that gives an item its level at a scale factor: first from a small probe,
+    // then measured at about that value, so that the synthesis' own limits show (strong,
+    // coarse grain stops growing with the value: at the probe's rate it fitted in 255 with
+    // log2_scale_factor 3 and came out 43 % weak).
     const int probe = std::max(1, 32 << (target.bit_depth - 8));
+    auto value_for = [&](const Item& it, int lsf) {
+        const double first = it.level / (cal.gain(it.c, it.h, it.v, 5, probe) * std::ldexp(1.0, 5 - lsf));
+        if (first > max_scale) return first;
+        const int at = std::clamp(int(std::lround(first)), 1, max_scale);
+        return it.level / cal.gain(it.c, it.h, it.v, lsf, at);
+    };
+    // log2_scale_factor: the largest (finest) at which every value fits its range.
     int lsf = 2;
     for (int l = 7; l >= 2; l--) {
         bool fits = true;
-        for (const auto& it : items) {
-            const double g = cal.gain(it.c, it.h, it.v, 5, probe) * std::ldexp(1.0, 5 - l);
-            if (it.level / g > max_scale) fits = false;
-        }
+        for (const auto& it : items) fits &= value_for(it, l) <= max_scale + 0.5;
         if (fits) {
             lsf = l;
             break;
@@ -110,10 +131,7 @@ FgcParams fgc_params_from_levels(const std::array<FgcComponentLevels, 3>& levels
         auto& m = p.comp[c];
         for (const auto& it : items) {
             if (it.c != c) continue;
-            // Calibrate at about the value used, so that the synthesis' rounding is included.
-            int value = std::clamp(int(std::lround(it.level / (cal.gain(c, it.h, it.v, 5, probe) * std::ldexp(1.0, 5 - lsf)))),
-                                   1, max_scale);
-            value = std::clamp(int(std::lround(it.level / cal.gain(c, it.h, it.v, lsf, value))), 0, max_scale);
+            const int value = std::clamp(int(std::lround(value_for(it, lsf))), 0, max_scale);
             if (value == 0) continue;
             FgcIntensityInterval iv;
             iv.intensity_interval_lower_bound = levels[c].intervals[it.i].lower;
@@ -145,8 +163,39 @@ FgcParams fgc_params_from_levels(const std::array<FgcComponentLevels, 3>& levels
     return any ? p : fgc_no_grain();
 }
 
+}  // namespace
+
+FgcParams fgc_no_grain() {
+    FgcParams p;
+    p.film_grain_characteristics_cancel_flag = true;
+    return p;
+}
+
+FgcParams fgc_params_from_levels(const std::array<FgcComponentLevels, 3>& levels, const FgcTarget& target) {
+    FgcCalibration cal(target);
+    return params_from_levels(levels, target, cal);
+}
+
+void choose_intervals(const LevelCurve& curve, const FgcTarget& target, FgcComponentReport& rep) {
+    rep.error_by_order.clear();
+    for (int k = 1; k <= target.max_intervals; k++) {
+        auto iv = segment_levels(curve, k);
+        std::vector<double> approx(256);
+        for (const auto& s : iv)
+            for (int i = s.lower; i <= s.upper; i++) approx[i] = s.level;
+        const double err = worst_band_error(curve, approx);
+        rep.error_by_order.push_back(err);
+        rep.intervals = iv;
+        rep.chosen_order = k;
+        rep.error = err;
+        if (err <= target.accuracy) break;
+    }
+    rep.accurate = rep.error <= target.accuracy;
+}
+
 FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcTarget& target) {
     FgcEstimate e;
+    FgcCalibration cal(target);
     const int num_comp = target.chroma == ChromaFormat::k400 ? 1 : 3;
     const double min_level = kMinGrainLevel8 * double(1 << (target.bit_depth - 8));
     std::array<FgcComponentLevels, 3> levels;
@@ -154,27 +203,14 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
         auto& rep = e.components[c];
         rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve);
         if (!rep.note.empty()) continue;
-        // The smallest number of intervals that meets the accuracy target.
-        for (int k = 1; k <= target.max_intervals; k++) {
-            auto iv = segment_levels(rep.curve, k);
-            std::vector<double> approx(256);
-            for (const auto& s : iv)
-                for (int i = s.lower; i <= s.upper; i++) approx[i] = s.level;
-            const double err = rms_relative_error(rep.curve, approx);
-            rep.error_by_order.push_back(err);
-            rep.intervals = iv;
-            rep.chosen_order = k;
-            rep.error = err;
-            if (err <= target.accuracy) break;
-        }
+        choose_intervals(rep.curve, target, rep);
         // Intervals too weak to show are left out: no interval, no grain there.
         std::vector<LevelInterval> kept;
         for (const auto& s : rep.intervals)
             if (s.level >= min_level) kept.push_back(s);
         rep.intervals = kept;
-        const cv::Mat pooled_power = mean_power(obs[c], 0, 255);
         if (obs[c].total_dct_blocks() > 0) {
-            rep.pooled = estimate_cutoffs(pooled_power);
+            rep.pooled = match_cutoffs(mean_power(obs[c], 0, 255), cal.cutoff_models(c));
         } else {
             rep.note = "no flat 64x64 block: default cut-offs 8";
         }
@@ -189,23 +225,23 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
             }
             std::pair<int, int> pair{rep.pooled.horizontal, rep.pooled.vertical};
             if (n >= kMinDctBlocksPerInterval) {
-                const auto ce = estimate_cutoffs(mean_power(obs[c], s.lower, s.upper));
+                const auto ce = match_cutoffs(mean_power(obs[c], s.lower, s.upper), cal.cutoff_models(c));
                 pair = {ce.horizontal, ce.vertical};
                 differs |= std::abs(pair.first - rep.pooled.horizontal) > 1 || std::abs(pair.second - rep.pooled.vertical) > 1;
             }
             own.push_back(pair);
         }
-        rep.plane_cutoffs = differs ? own : std::vector<std::pair<int, int>>(rep.intervals.size(),
-                                                                             {rep.pooled.horizontal, rep.pooled.vertical});
+        rep.cutoffs = differs ? own : std::vector<std::pair<int, int>>(rep.intervals.size(),
+                                                                       {rep.pooled.horizontal, rep.pooled.vertical});
         std::vector<std::pair<int, int>> distinct;
-        for (const auto& pr : rep.plane_cutoffs)
+        for (const auto& pr : rep.cutoffs)
             if (std::find(distinct.begin(), distinct.end(), pr) == distinct.end()) distinct.push_back(pr);
         rep.cutoff_pairs = int(distinct.size());
         rep.present = !rep.intervals.empty();
         levels[c].intervals = rep.intervals;
-        levels[c].plane_cutoffs = rep.plane_cutoffs;
+        levels[c].cutoffs = rep.cutoffs;
     }
-    e.params = fgc_params_from_levels(levels, target);
+    e.params = params_from_levels(levels, target, cal);
     return e;
 }
 

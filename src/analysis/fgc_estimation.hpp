@@ -24,21 +24,23 @@ struct FgcTarget {
 };
 
 // One component as the model describes it: intervals (levels in sample units) with their
-// cut-offs at the plane's own resolution.
+// signalled cut-offs (chroma's as the SEI carries them: the synthesis scales them to the
+// chroma plane).
 struct FgcComponentLevels {
     std::vector<LevelInterval> intervals;
-    std::vector<std::pair<int, int>> plane_cutoffs;  // (horizontal, vertical) per interval
+    std::vector<std::pair<int, int>> cutoffs;  // (horizontal, vertical) per interval
 };
 
 struct FgcComponentReport {
     bool present = false;
     LevelCurve curve;
     std::vector<LevelInterval> intervals;
-    std::vector<double> error_by_order;  // RMS relative error with 1, 2, ... intervals
+    std::vector<double> error_by_order;  // worst band error (worst_band_error) with 1, 2, ... intervals
     int chosen_order = 0;
     double error = 0.0;
+    bool accurate = true;  // error within the target's accuracy
     CutoffEstimate pooled;
-    std::vector<std::pair<int, int>> plane_cutoffs;
+    std::vector<std::pair<int, int>> cutoffs;  // signalled, per interval
     int cutoff_pairs = 0;
     std::string note;
 };
@@ -49,6 +51,10 @@ struct FgcEstimate {
 };
 
 FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcTarget& target);
+
+// The fewest intervals (up to target.max_intervals) whose worst band error meets
+// target.accuracy; fills intervals, error_by_order, chosen_order, error and accurate.
+void choose_intervals(const LevelCurve& curve, const FgcTarget& target, FgcComponentReport& report);
 
 // The SEI for given component levels (empty intervals = no grain for that component):
 // chooses log2_scale_factor for precision and converts levels to comp_model_value.

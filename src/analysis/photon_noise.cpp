@@ -98,23 +98,14 @@ FgcParams photon_noise_fgc(const CameraModel& cam, ChromaFormat chroma, FgcFlavo
     t.accuracy = accuracy;
     FgcComponentReport rep;
     rep.curve = photon_noise_levels(cam);
-    for (int k = 1; k <= t.max_intervals; k++) {
-        rep.intervals = segment_levels(rep.curve, k);
-        std::vector<double> approx(256);
-        for (const auto& s : rep.intervals)
-            for (int i = s.lower; i <= s.upper; i++) approx[i] = s.level;
-        rep.error = rms_relative_error(rep.curve, approx);
-        rep.error_by_order.push_back(rep.error);
-        rep.chosen_order = k;
-        if (rep.error <= accuracy) break;
-    }
+    choose_intervals(rep.curve, t, rep);
     // White noise: the widest band the model has.
-    rep.plane_cutoffs.assign(rep.intervals.size(), {14, 14});
+    rep.cutoffs.assign(rep.intervals.size(), {14, 14});
     rep.cutoff_pairs = 1;
     rep.present = true;
     std::array<FgcComponentLevels, 3> levels;
     levels[0].intervals = rep.intervals;
-    levels[0].plane_cutoffs = rep.plane_cutoffs;
+    levels[0].cutoffs = rep.cutoffs;
     const FgcParams p = fgc_params_from_levels(levels, t);
     if (report) *report = rep;
     return p;
@@ -128,7 +119,7 @@ Av1FilmGrainParams photon_noise_av1(const CameraModel& cam, ChromaFormat chroma,
     Av1ComponentReport rep;
     rep.curve = photon_noise_levels(cam);
     rep.points = fit_piecewise_linear(rep.curve, 14, accuracy);
-    rep.error = relative_error(rep.curve, evaluate_piecewise_linear(rep.points));
+    rep.error = worst_band_error(rep.curve, evaluate_piecewise_linear(rep.points));
     rep.present = true;
     std::array<std::vector<LevelPoint>, 3> points;
     points[0] = rep.points;

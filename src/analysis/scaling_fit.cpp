@@ -205,6 +205,30 @@ double rms_relative_error(const LevelCurve& curve, const std::vector<double>& ap
     return w > 0 ? std::sqrt(ss / w) / peak : 0.0;
 }
 
+double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx) {
+    double peak = 0;
+    for (int i = curve.observed_low; i <= curve.observed_high && i < 256; i++) peak = std::max(peak, curve.level[i]);
+    if (peak <= 0) return 0.0;
+    double worst = 0;
+    for (int b = 0; b < 256; b += kErrorBandWidth) {
+        int blocks = 0;
+        for (int s = b / kSubRangeWidth; s < (b + kErrorBandWidth) / kSubRangeWidth; s++) blocks += curve.sub_range_count[s];
+        if (blocks < kMinPerSubRange) continue;
+        double w = 0, level = 0, described = 0;
+        for (int i = b; i < b + kErrorBandWidth; i++) {
+            if (curve.weight[i] <= 0) continue;
+            w += curve.weight[i];
+            level += curve.weight[i] * curve.level[i];
+            described += curve.weight[i] * approx[i];
+        }
+        if (w <= 0) continue;
+        level /= w;
+        described /= w;
+        worst = std::max(worst, std::fabs(described - level) / std::max(level, 0.25 * peak));
+    }
+    return worst;
+}
+
 std::vector<double> evaluate_piecewise_linear(const std::vector<LevelPoint>& points) {
     std::vector<double> f(256, 0.0);
     if (points.empty()) return f;
@@ -267,9 +291,16 @@ std::vector<LevelPoint> fit_knots(const LevelCurve& curve, const std::vector<int
 }  // namespace
 
 std::vector<LevelPoint> fit_piecewise_linear(const LevelCurve& curve, int max_points, double tolerance) {
+    // Knots only where there are observations: both models hold the end points' levels
+    // constant beyond them (AV1 7.18.3.5's scaling lookup, the curve's own extrapolation),
+    // where knots outside would continue the nearest slope into intensities nobody measured
+    // (chroma, observed over a few dozen values near 128, went to 3x its level).
     std::vector<int> knots;
-    for (int v = 0; v < 256; v += 16) knots.push_back(v);
-    knots.push_back(255);
+    const int lo = std::clamp(curve.observed_low, 0, 255), hi = std::clamp(curve.observed_high, lo, 255);
+    knots.push_back(lo);
+    for (int v = (lo / 16 + 1) * 16; v < hi; v += 16)
+        if (v - lo >= 4 && hi - v >= 4) knots.push_back(v);
+    if (hi > lo) knots.push_back(hi);
     constexpr double kSmoothing = 1e-3;
     std::vector<LevelPoint> best = fit_knots(curve, knots, kSmoothing);
     while (knots.size() > 1) {
@@ -280,7 +311,7 @@ std::vector<LevelPoint> fit_piecewise_linear(const LevelCurve& curve, int max_po
             std::vector<int> trial = knots;
             trial.erase(trial.begin() + d);
             auto pts = fit_knots(curve, trial, kSmoothing);
-            const double err = relative_error(curve, evaluate_piecewise_linear(pts));
+            const double err = worst_band_error(curve, evaluate_piecewise_linear(pts));
             if (err < best_err) {
                 best_err = err;
                 best_drop = d;

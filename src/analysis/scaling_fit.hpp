@@ -49,6 +49,16 @@ double relative_error(const LevelCurve& curve, const std::vector<double>& approx
 // The same, as an observation-weighted RMS (robust to a few noisy sub-ranges).
 double rms_relative_error(const LevelCurve& curve, const std::vector<double>& approx);
 
+// The accuracy every fit is held to: per band of kErrorBandWidth intensities with
+// observations, |mean description - mean level| relative to the band's own level (floored at
+// a quarter of the peak, so that near-zero levels do not dominate); the worst band. Bands
+// count alike whatever their number of blocks: a dark band seen in a few blocks needs its
+// own interval as much as the well-observed midtones (a count-weighted criterion let one
+// interval cover both, 17-32 % low in the darks). Averaging over a band keeps the
+// sub-ranges' sampling noise out.
+inline constexpr int kErrorBandWidth = 16;
+double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx);
+
 // Piecewise-linear points (value, level): a regularized least-squares fit on fixed knots,
 // then points removed one at a time, least damage first, while at most `max_points` remain
 // and the error stays within `tolerance` (relative, as relative_error).
