@@ -42,25 +42,65 @@ GrainEstimate grain_from_denoised(const cv::Mat& source, const cv::Mat& denoised
     return g;
 }
 
-GrainEstimate denoise_temporal(const std::vector<const cv::Mat*>& window, int centre, int bit_depth) {
-    const cv::Mat& f0 = *window[centre];
+cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour) {
+    if (centre.size() != neighbour.size() || centre.cols < 32 || centre.rows < 32) return {0, 0};
+    cv::Mat window;
+    cv::createHanningWindow(window, centre.size(), CV_32F);
+    double response = 0;
+    // Copies: with a window and sizes the DFT takes as they are, OpenCV 4.6's phaseCorrelate
+    // multiplies the window into its inputs in place.
+    const cv::Point2d d = cv::phaseCorrelate(centre.clone(), neighbour.clone(), window, &response);
+    // A clear peak only: grain alone (a static picture) gives a flat, weak correlation.
+    if (response < 0.05 || std::fabs(d.x) > centre.cols / 4.0 || std::fabs(d.y) > centre.rows / 4.0) return {0, 0};
+    return {int(std::lround(d.x)), int(std::lround(d.y))};
+}
+
+namespace {
+
+// neighbour(x + dx, y + dy) at (x, y); `inside` marks where that sample exists.
+void move_by(const cv::Mat& neighbour, cv::Point shift, cv::Mat& moved, cv::Mat& inside) {
+    if (shift == cv::Point(0, 0)) {
+        moved = neighbour;
+        inside = cv::Mat(neighbour.size(), CV_8U, cv::Scalar(255));
+        return;
+    }
+    moved = cv::Mat::zeros(neighbour.size(), neighbour.type());
+    inside = cv::Mat::zeros(neighbour.size(), CV_8U);
+    const int w = neighbour.cols, h = neighbour.rows;
+    const int x0 = std::max(0, -shift.x), x1 = std::min(w, w - shift.x);
+    const int y0 = std::max(0, -shift.y), y1 = std::min(h, h - shift.y);
+    if (x1 <= x0 || y1 <= y0) return;
+    const cv::Rect dst(x0, y0, x1 - x0, y1 - y0);
+    neighbour(dst + shift).copyTo(moved(dst));
+    inside(dst).setTo(255);
+}
+
+}  // namespace
+
+GrainEstimate denoise_temporal(const cv::Mat& f0, const std::vector<TemporalNeighbour>& neighbours, int bit_depth,
+                               std::vector<cv::Mat>* accepted) {
     cv::Mat sum = f0.clone();
     cv::Mat count(f0.size(), CV_32F, cv::Scalar(1.0f));
     // Smallest difference treated as motion: a fraction of one 8-bit code value, so that
     // identical (grain-free) neighbours are always accepted.
     const double floor_threshold = 0.5 * double(1 << (bit_depth - 8));
-    cv::Mat diff, blurred, accept;
-    for (std::size_t j = 0; j < window.size(); j++) {
-        if (int(j) == centre) continue;
-        cv::subtract(*window[j], f0, diff);
+    cv::Mat moved, inside, diff, blurred, accept;
+    if (accepted) accepted->clear();
+    for (const TemporalNeighbour& n : neighbours) {
+        move_by(*n.plane, n.shift, moved, inside);
+        cv::subtract(moved, f0, diff);
+        diff.setTo(0, inside == 0);
         cv::GaussianBlur(diff, blurred, cv::Size(0, 0), 2.5, 2.5, cv::BORDER_REFLECT);
         // 1.4826 * MAD = the standard deviation of the blurred grain difference where
         // nothing moves; 3 of them separate motion from grain.
         const double thr = std::max(floor_threshold, 3.0 * 1.4826 * median_abs(blurred));
         cv::Mat absb = cv::abs(blurred);
         cv::compare(absb, thr, accept, cv::CMP_LT);
-        cv::add(sum, *window[j], sum, accept);
+        cv::bitwise_and(accept, inside, accept);
+        if (n.guide) cv::bitwise_and(accept, *n.guide, accept);
+        cv::add(sum, moved, sum, accept);
         cv::add(count, cv::Scalar(1.0f), count, accept);
+        if (accepted) accepted->push_back(accept.clone());
     }
     GrainEstimate g;
     cv::divide(sum, count, g.denoised);

@@ -13,13 +13,31 @@ struct GrainEstimate {
     cv::Mat reliable;  // CV_8U, 255 where the grain is an unbiased estimate (temporal or supplied)
 };
 
-// Motion-adaptive temporal denoising of window[centre]: each neighbour contributes where the
-// blurred difference to the centre frame is within the grain's own fluctuation (a robust
-// threshold from the whole picture), so moving areas fall back to fewer frames. Averaging n
-// frames whose grain is independent leaves (1 - 1/n) of the grain variance in the
-// difference, which is undone per sample. Samples no neighbour matched take the spatial
-// fallback and are marked unreliable.
-GrainEstimate denoise_temporal(const std::vector<const cv::Mat*>& window, int centre, int bit_depth);
+// Global motion of a neighbour relative to the centre picture, as a whole-sample
+// translation: neighbour(x + dx, y + dy) shows what centre(x, y) shows. Phase correlation
+// of the luma planes; (0, 0) when the correlation peak is not clear (no dominant motion).
+cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour);
+
+// One neighbour of the temporal window as the denoiser uses it.
+struct TemporalNeighbour {
+    const cv::Mat* plane = nullptr;
+    cv::Point shift;          // global motion (estimate_global_shift, in this plane's samples)
+    const cv::Mat* guide = nullptr;  // optional CV_8U: where another plane (luma) accepted this neighbour
+};
+
+// Motion-adaptive temporal denoising of the centre picture: each neighbour, moved by its
+// global shift, contributes where the blurred difference to the centre is within the
+// grain's own fluctuation (a robust threshold from the whole picture) and where the guide
+// (luma's decision, for chroma) accepted it, so moving areas fall back to fewer frames.
+// Global motion compensation keeps panned pictures temporal (without it a pan sent
+// everything to the spatial fallback: twice the luma error); the luma guide keeps chroma,
+// whose texture is too faint to trip its own threshold, from taking moving texture for
+// grain. Averaging n frames whose grain is independent leaves (1 - 1/n) of the grain
+// variance in the difference, which is undone per sample. Samples no neighbour matched take
+// the spatial fallback and are marked unreliable. `accepted` (optional) receives, per
+// neighbour, where it contributed (CV_8U 255), for guiding the chroma planes.
+GrainEstimate denoise_temporal(const cv::Mat& centre, const std::vector<TemporalNeighbour>& neighbours, int bit_depth,
+                               std::vector<cv::Mat>* accepted = nullptr);
 
 // Single-picture fallback: a Gaussian low-pass. The grain it yields misses the grain's own
 // low frequencies, so it is marked unreliable.

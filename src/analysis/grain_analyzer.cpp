@@ -71,23 +71,45 @@ void GrainAnalyzer::analyse(std::size_t wi) {
     cv::Mat luma_normalized;
     const bool keep = sample_.index < 0 || (sample_.index < 2 * o_.temporal_radius && k >= 2 * o_.temporal_radius);
     if (keep) sample_.index = k;
+    // Luma leads: its global motion and its per-neighbour motion decisions guide the chroma
+    // planes, whose moving texture is too faint to be told from grain.
+    std::vector<cv::Point> luma_shifts;
+    std::vector<cv::Mat> luma_accepted;
+    const auto to_plane_size = [](const cv::Mat& mask, cv::Size size) {
+        if (mask.size() == size) return mask;
+        cv::Mat m;
+        cv::resize(mask, m, size, 0, 0, cv::INTER_AREA);
+        cv::threshold(m, m, 254, 255, cv::THRESH_BINARY);  // every luma sample under it agreed
+        return m;
+    };
     for (int p = 0; p < src.plane_count(); p++) {
         const cv::Mat s = plane_to_float(src, p);
+        const int sx = p > 0 ? chroma_shift_x(fmt_.chroma) : 0, sy = p > 0 ? chroma_shift_y(fmt_.chroma) : 0;
         GrainEstimate g;
         if (centre.denoised) {
             g = grain_from_denoised(s, plane_to_float(centre.denoised->view(), p));
         } else {
             std::vector<cv::Mat> planes;
-            std::vector<const cv::Mat*> ptrs;
-            int centre_pos = 0;
+            std::vector<TemporalNeighbour> neighbours;
             planes.reserve(window_.size());
             for (const auto& h : window_)
-                if (std::abs(h.index - k) <= o_.temporal_radius) {
-                    if (h.index == k) centre_pos = int(planes.size());
-                    planes.push_back(h.index == k ? s : plane_to_float(const_cast<FrameBuffer&>(h.source).view(), p));
+                if (h.index != k && std::abs(h.index - k) <= o_.temporal_radius)
+                    planes.push_back(plane_to_float(const_cast<FrameBuffer&>(h.source).view(), p));
+            if (p == 0)
+                for (const cv::Mat& m : planes) luma_shifts.push_back(estimate_global_shift(s, m));
+            std::vector<cv::Mat> guides(planes.size());
+            for (std::size_t j = 0; j < planes.size(); j++) {
+                TemporalNeighbour n;
+                n.plane = &planes[j];
+                n.shift = {int(std::lround(luma_shifts[j].x / double(1 << sx))), int(std::lround(luma_shifts[j].y / double(1 << sy)))};
+                if (p > 0 && j < luma_accepted.size()) {
+                    guides[j] = to_plane_size(luma_accepted[j], s.size());
+                    n.guide = &guides[j];
                 }
-            for (const auto& m : planes) ptrs.push_back(&m);
-            g = planes.size() >= 2 ? denoise_temporal(ptrs, centre_pos, fmt_.bit_depth) : denoise_spatial(s);
+                neighbours.push_back(n);
+            }
+            g = neighbours.empty() ? denoise_spatial(s)
+                                   : denoise_temporal(s, neighbours, fmt_.bit_depth, p == 0 ? &luma_accepted : nullptr);
         }
         const cv::Mat flat = flat_region_mask(g.denoised, fmt_.bit_depth);
         cv::Mat usable;
