@@ -26,6 +26,7 @@ struct AnalyzeOptions {
     double accuracy = 0.05;
     int max_lag = 3;
     bool spatial = false;
+    bool force = false;  // write components that fail their accuracy check
     bool quiet = false;
     RawVideoOptions raw;
 };

@@ -192,8 +192,20 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
     rep.bit_depth = fmt.bit_depth;
     const char* names[3] = {"Y", "Cb", "Cr"};
     const int nplanes = num_planes(fmt.chroma);
-    const double to8 = 1.0 / double(1 << (fmt.bit_depth - 8));
     auto pct = [&](double x) { return percent(x); };
+    // Components whose description misses the measured level curve by more than --accuracy:
+    // refused (nothing written) unless --force, named either way.
+    std::vector<std::string> inaccurate;
+    auto check_accuracy = [&](int c, bool present, bool accurate, double error, int band) {
+        if (!present || accurate) return std::string();
+        std::ostringstream m;
+        m << names[c] << ": the fitted levels miss the measured grain level by " << pct(error);
+        if (band >= 0) m << " in intensities " << band << ".." << band + analysis::kErrorBandWidth - 1;
+        m << " (allowed at most " << pct(o.accuracy) << ", --accuracy)";
+        inaccurate.push_back(m.str());
+        return std::string(o.force ? "written despite failing its accuracy check (--force)"
+                                   : "fails its accuracy check");
+    };
     if (fgc) {
         const analysis::FgcEstimate e = analyzer->estimate_fgc();
         fgc_params = e.params;
@@ -215,6 +227,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
                 s << "; log2_scale_factor " << fgc_params.log2_scale_factor;
             }
             if (!r.note.empty()) s << (r.present ? "; " : "") << r.note;
+            if (const std::string a = check_accuracy(c, rp.present, r.accurate, r.error, r.worst_band); !a.empty()) s << "; " << a;
             s << "; " << r.curve.observations << " block observations, " << r.curve.outliers << " outliers removed";
             rp.summary = s.str();
             rep.planes.push_back(rp);
@@ -244,12 +257,18 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
                   << e.params.ar_coeff_shift_minus_6 + 6;
             }
             if (!r.note.empty()) s << (r.present ? "; " : "") << r.note;
+            if (const std::string a = check_accuracy(c, rp.present, r.accurate, r.error, r.worst_band); !a.empty()) s << "; " << a;
             s << "; " << r.curve.observations << " block observations, " << r.curve.outliers << " outliers removed";
             rp.summary = s.str();
             rep.planes.push_back(rp);
         }
     }
-    (void)to8;
+    if (!inaccurate.empty() && !o.force) {
+        std::string m;
+        for (const auto& i : inaccurate) m += (m.empty() ? "" : "; ") + i;
+        throw Error(ErrorCode::kInvalidArgument, m + "; nothing written: analyse more (or flatter) pictures, raise --accuracy, "
+                                                     "or add --force to write the set anyway");
+    }
 
     if (!o.report.empty()) {
         const std::filesystem::path rp(o.report);
@@ -345,6 +364,8 @@ void add_analyze_options(CLI::App* sub, AnalyzeOptions& o) {
                     "relative error the smallest model must meet (intervals / scaling points)")
         ->capture_default_str();
     sub->add_option("--max-lag", o.max_lag, "av1: longest AR lag considered (0..3)")->capture_default_str();
+    sub->add_flag("--force", o.force,
+                  "write components whose fit misses the measured levels by more than --accuracy (refused otherwise)");
     sub->add_flag("--quiet,-q", o.quiet, "no messages on stderr except errors");
     o.raw.add_to(sub);
 }

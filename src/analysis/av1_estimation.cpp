@@ -207,7 +207,7 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
         rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve);
         if (!rep.note.empty()) continue;
         rep.points = fit_piecewise_linear(rep.curve, max_points[c], target.accuracy);
-        rep.error = worst_band_error(rep.curve, evaluate_piecewise_linear(rep.points));
+        rep.error = worst_band_error(rep.curve, evaluate_piecewise_linear(rep.points), &rep.worst_band);
         rep.accurate = rep.error <= target.accuracy;
         rep.present = true;
         points[c] = rep.points;

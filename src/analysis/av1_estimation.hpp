@@ -30,6 +30,7 @@ struct Av1ComponentReport {
     LevelCurve curve;
     std::vector<LevelPoint> points;  // levels in sample units
     double error = 0.0;    // worst band error of the points (worst_band_error)
+    int worst_band = -1;   // lower end of that band (8-bit)
     bool accurate = true;  // error within the target's accuracy
     std::vector<double> residual_by_lag;  // normalized residual variance for lags 0..3
     std::vector<double> spectrum_error_by_lag;  // spectrum deviation from the longest lag's model

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -42,17 +43,59 @@ GrainEstimate grain_from_denoised(const cv::Mat& source, const cv::Mat& denoised
     return g;
 }
 
+namespace {
+
+// Mean |a(x, y) - b(x + dx, y + dy)| over the interior both share (every `step`-th sample).
+double shifted_difference(const cv::Mat& a, const cv::Mat& b, int dx, int dy, int margin, int step) {
+    double sum = 0;
+    long long n = 0;
+    for (int y = margin; y < a.rows - margin; y += step) {
+        const int yb = y + dy;
+        if (yb < 0 || yb >= b.rows) continue;
+        const float* ra = a.ptr<float>(y);
+        const float* rb = b.ptr<float>(yb);
+        for (int x = margin; x < a.cols - margin; x += step) {
+            const int xb = x + dx;
+            if (xb < 0 || xb >= b.cols) continue;
+            sum += std::fabs(ra[x] - rb[xb]);
+            n++;
+        }
+    }
+    return n ? sum / double(n) : std::numeric_limits<double>::infinity();
+}
+
+cv::Point best_shift(const cv::Mat& a, const cv::Mat& b, cv::Point around, int radius, int margin, int step, double* cost) {
+    cv::Point best = around;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (int dy = around.y - radius; dy <= around.y + radius; dy++)
+        for (int dx = around.x - radius; dx <= around.x + radius; dx++) {
+            const double c = shifted_difference(a, b, dx, dy, margin, step);
+            if (c < best_cost) best_cost = c, best = {dx, dy};
+        }
+    if (cost) *cost = best_cost;
+    return best;
+}
+
+}  // namespace
+
 cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour) {
-    if (centre.size() != neighbour.size() || centre.cols < 32 || centre.rows < 32) return {0, 0};
-    cv::Mat window;
-    cv::createHanningWindow(window, centre.size(), CV_32F);
-    double response = 0;
-    // Copies: with a window and sizes the DFT takes as they are, OpenCV 4.6's phaseCorrelate
-    // multiplies the window into its inputs in place.
-    const cv::Point2d d = cv::phaseCorrelate(centre.clone(), neighbour.clone(), window, &response);
-    // A clear peak only: grain alone (a static picture) gives a flat, weak correlation.
-    if (response < 0.05 || std::fabs(d.x) > centre.cols / 4.0 || std::fabs(d.y) > centre.rows / 4.0) return {0, 0};
-    return {int(std::lround(d.x)), int(std::lround(d.y))};
+    // Block matching of the whole picture, coarse to fine, on low-passed pictures: the grain
+    // (independent between pictures) averages out and the content decides. Phase
+    // correlation whitens the spectrum, where grain owns the high frequencies: it missed
+    // pans by a sample or two and found motion in static grain.
+    constexpr int kCoarse = 4, kCoarseRadius = 8, kFineRadius = kCoarse - 1, kMargin = 8 * kCoarse;
+    if (centre.size() != neighbour.size() || centre.cols < 4 * kMargin || centre.rows < 4 * kMargin) return {0, 0};
+    cv::Mat a, b, a4, b4;
+    cv::GaussianBlur(centre, a, cv::Size(0, 0), 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::GaussianBlur(neighbour, b, cv::Size(0, 0), 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::resize(a, a4, cv::Size(a.cols / kCoarse, a.rows / kCoarse), 0, 0, cv::INTER_AREA);
+    cv::resize(b, b4, cv::Size(b.cols / kCoarse, b.rows / kCoarse), 0, 0, cv::INTER_AREA);
+    const cv::Point coarse = best_shift(a4, b4, {0, 0}, kCoarseRadius, kMargin / kCoarse, 1, nullptr);
+    double cost = 0;
+    const cv::Point fine = best_shift(a, b, coarse * kCoarse, kFineRadius, kMargin, 2, &cost);
+    // A clear winner only: on flat content every shift matches alike and nothing moved.
+    const double still = shifted_difference(a, b, 0, 0, kMargin, 2);
+    return cost < 0.8 * still ? fine : cv::Point(0, 0);
 }
 
 namespace {

@@ -14,8 +14,8 @@ struct GrainEstimate {
 };
 
 // Global motion of a neighbour relative to the centre picture, as a whole-sample
-// translation: neighbour(x + dx, y + dy) shows what centre(x, y) shows. Phase correlation
-// of the luma planes; (0, 0) when the correlation peak is not clear (no dominant motion).
+// translation: neighbour(x + dx, y + dy) shows what centre(x, y) shows (up to +-35 samples).
+// (0, 0) when no shift matches clearly better than none (static or flat pictures).
 cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour);
 
 // One neighbour of the temporal window as the denoiser uses it.

@@ -183,8 +183,10 @@ void choose_intervals(const LevelCurve& curve, const FgcTarget& target, FgcCompo
         std::vector<double> approx(256);
         for (const auto& s : iv)
             for (int i = s.lower; i <= s.upper; i++) approx[i] = s.level;
-        const double err = worst_band_error(curve, approx);
+        int band = -1;
+        const double err = worst_band_error(curve, approx, &band);
         rep.error_by_order.push_back(err);
+        rep.worst_band = band;
         rep.intervals = iv;
         rep.chosen_order = k;
         rep.error = err;

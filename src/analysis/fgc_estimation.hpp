@@ -38,6 +38,7 @@ struct FgcComponentReport {
     std::vector<double> error_by_order;  // worst band error (worst_band_error) with 1, 2, ... intervals
     int chosen_order = 0;
     double error = 0.0;
+    int worst_band = -1;   // lower end of the band of that error (8-bit)
     bool accurate = true;  // error within the target's accuracy
     CutoffEstimate pooled;
     std::vector<std::pair<int, int>> cutoffs;  // signalled, per interval

@@ -205,9 +205,10 @@ double rms_relative_error(const LevelCurve& curve, const std::vector<double>& ap
     return w > 0 ? std::sqrt(ss / w) / peak : 0.0;
 }
 
-double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx) {
+double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx, int* worst_band_lower) {
     double peak = 0;
     for (int i = curve.observed_low; i <= curve.observed_high && i < 256; i++) peak = std::max(peak, curve.level[i]);
+    if (worst_band_lower) *worst_band_lower = -1;
     if (peak <= 0) return 0.0;
     double worst = 0;
     for (int b = 0; b < 256; b += kErrorBandWidth) {
@@ -224,7 +225,11 @@ double worst_band_error(const LevelCurve& curve, const std::vector<double>& appr
         if (w <= 0) continue;
         level /= w;
         described /= w;
-        worst = std::max(worst, std::fabs(described - level) / std::max(level, 0.25 * peak));
+        const double e = std::fabs(described - level) / std::max(level, 0.25 * peak);
+        if (e > worst) {
+            worst = e;
+            if (worst_band_lower) *worst_band_lower = b;
+        }
     }
     return worst;
 }

@@ -57,7 +57,7 @@ double rms_relative_error(const LevelCurve& curve, const std::vector<double>& ap
 // interval cover both, 17-32 % low in the darks). Averaging over a band keeps the
 // sub-ranges' sampling noise out.
 inline constexpr int kErrorBandWidth = 16;
-double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx);
+double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx, int* worst_band_lower = nullptr);
 
 // Piecewise-linear points (value, level): a regularized least-squares fit on fixed knots,
 // then points removed one at a time, least damage first, while at most `max_points` remain
