@@ -141,6 +141,14 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
         for (int i = 0; i < npos && i < int(co.size()); i++) (*cc[c])[i] = q(co[i]);
         if (luma && int(co.size()) > npos) (*cc[c])[npos] = q(co[npos]);
     }
+    if (target.chroma == ChromaFormat::k420 && (p.num_cb_points == 0) != (p.num_cr_points == 0)) {
+        // 4:2:0 signals both chroma functions or neither (AV1 5.9.30): the grain-free one
+        // gets a single zero point, here for the calibration and below for the result.
+        const int c = p.num_cb_points == 0 ? 1 : 2;
+        *nps[c] = 1;
+        vals[c][0] = 128;
+        scal[c][0] = 0;
+    }
     // Grain level per unit of scaling at scaling_shift 8, per plane, over several seeds.
     const int ssx = chroma_shift_x(target.chroma), ssy = chroma_shift_y(target.chroma);
     (void)ssx, (void)ssy;
@@ -181,8 +189,6 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
         *nps[c] = nonzero ? n : 0;
     }
     if (target.chroma == ChromaFormat::k420 && (p.num_cb_points == 0) != (p.num_cr_points == 0)) {
-        // 4:2:0 signals both chroma functions or neither (AV1 5.9.30): the grain-free one
-        // gets a single zero point.
         int* n = p.num_cb_points == 0 ? &p.num_cb_points : &p.num_cr_points;
         int c = p.num_cb_points == 0 ? 1 : 2;
         *n = 1;
@@ -204,7 +210,7 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
     std::array<std::vector<LevelPoint>, 3> points;
     for (int c = 0; c < num_planes; c++) {
         auto& rep = e.components[c];
-        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve);
+        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve, c > 0);
         if (!rep.note.empty()) continue;
         rep.points = fit_piecewise_linear(rep.curve, max_points[c], target.accuracy);
         rep.error = worst_band_error(rep.curve, evaluate_piecewise_linear(rep.points), &rep.worst_band);

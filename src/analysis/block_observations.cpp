@@ -52,9 +52,44 @@ double detrended_sigma(const cv::Mat& block, cv::Mat* residual) {
     return std::sqrt(ss / (w * h - 3));
 }
 
-cv::Mat block_dct_power(const cv::Mat& grain_block) {
+void LagSums::add(const LagSums& o) {
+    for (int k = 0; k <= kMaxCorrelationLag; k++) {
+        x[k] += o.x[k];
+        y[k] += o.y[k];
+        x_pairs[k] += o.x_pairs[k];
+        y_pairs[k] += o.y_pairs[k];
+    }
+    energy += o.energy;
+    samples += o.samples;
+}
+
+double LagSums::rx(int k) const {
+    return x_pairs[k] > 0 && energy > 0 ? (x[k] / x_pairs[k]) / (energy / samples) : 0.0;
+}
+
+double LagSums::ry(int k) const {
+    return y_pairs[k] > 0 && energy > 0 ? (y[k] / y_pairs[k]) / (energy / samples) : 0.0;
+}
+
+void accumulate_lags(const cv::Mat& r, LagSums& sums) {
+    for (int yy = 0; yy < r.rows; yy++) {
+        const float* row = r.ptr<float>(yy);
+        for (int xx = 0; xx < r.cols; xx++) {
+            const double v = row[xx];
+            sums.energy += v * v;
+            for (int k = 1; k <= kMaxCorrelationLag; k++) {
+                if (xx + k < r.cols) sums.x[k] += v * row[xx + k], sums.x_pairs[k] += 1;
+                if (yy + k < r.rows) sums.y[k] += v * r.ptr<float>(yy + k)[xx], sums.y_pairs[k] += 1;
+            }
+        }
+    }
+    sums.samples += double(r.total());
+}
+
+cv::Mat block_dct_power(const cv::Mat& grain_block, LagSums* lags) {
     cv::Mat residual, coeffs, sq, sq64;
     detrended_sigma(grain_block, &residual);
+    if (lags) accumulate_lags(residual, *lags);
     cv::dct(residual, coeffs);
     cv::multiply(coeffs, coeffs, sq);
     sq.convertTo(sq64, CV_64F);
@@ -120,6 +155,7 @@ void merge_observations(PlaneObservations& total, const PlaneObservations& part)
         if (!part.dct_blocks[b]) continue;
         total.dct_power[b] += part.dct_power[b];
         total.dct_blocks[b] += part.dct_blocks[b];
+        total.lags[b].add(part.lags[b]);
     }
     auto add = [](ArEquations& t, const ArEquations& p) {
         t.xtx += p.xtx;
@@ -190,7 +226,7 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
             cv::minMaxLoc(source(r), &mn, &mx);
             if (mn <= 0 || mx >= maxv) continue;
             const int bin = std::clamp(int(cv::mean(denoised(r))[0] * to8) / (256 / kPowerBins), 0, kPowerBins - 1);
-            out.dct_power[bin] += block_dct_power(grain(r));
+            out.dct_power[bin] += block_dct_power(grain(r), &out.lags[bin]);
             out.dct_blocks[bin]++;
         }
     }

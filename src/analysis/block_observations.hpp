@@ -37,10 +37,24 @@ struct ArEquations {
     double n = 0.0;
 };
 
+// Products of detrended grain with itself shifted by k samples along each axis, summed
+// over blocks: the grain's autocorrelation at short lags, which FGC cut-offs are matched on.
+inline constexpr int kMaxCorrelationLag = 3;
+struct LagSums {
+    std::array<double, kMaxCorrelationLag + 1> x{}, y{};              // [k]: sum g(x, y) g(x + k, y) / g(x, y + k)
+    std::array<double, kMaxCorrelationLag + 1> x_pairs{}, y_pairs{};  // products summed
+    double energy = 0, samples = 0;
+    void add(const LagSums& o);
+    // Normalized autocorrelation at lag k (0 without observations).
+    double rx(int k) const;
+    double ry(int k) const;
+};
+
 struct PlaneObservations {
     std::vector<BlockSample> blocks;
     std::array<cv::Mat, kPowerBins> dct_power;  // CV_64F 64x64 sums of squared coefficients
     std::array<int, kPowerBins> dct_blocks{};
+    std::array<LagSums, kPowerBins> lags;       // over the same 64x64 blocks
     ArEquations ar;
     // Even and odd analysed pictures apart: two fits whose difference shows the fit's own noise
     // (grain realizations differ between pictures, not between blocks of one picture's template).
@@ -78,8 +92,12 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
 // Grain standard deviation of a block after removing its least-squares plane.
 double detrended_sigma(const cv::Mat& block, cv::Mat* residual);
 
-// Squared 64x64 DCT of a grain block after removing its plane (CV_64F): what the FGC
-// observations sum, and what the cut-off calibration measures on synthesized grain.
-cv::Mat block_dct_power(const cv::Mat& grain_block);
+// Squared 64x64 DCT of a grain block after removing its plane (CV_64F), and its lag
+// products added to `lags`: what the FGC observations sum, and what the cut-off calibration
+// measures on synthesized grain.
+cv::Mat block_dct_power(const cv::Mat& grain_block, LagSums* lags = nullptr);
+
+// Lag products of one (detrended) block.
+void accumulate_lags(const cv::Mat& residual, LagSums& sums);
 
 }  // namespace filmgrain::analysis

@@ -1,57 +1,65 @@
 #include "analysis/cutoff_estimation.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace filmgrain::analysis {
-
-void power_marginals(const cv::Mat& power, PowerMarginal& horizontal, PowerMarginal& vertical) {
-    horizontal.fill(0.0);
-    vertical.fill(0.0);
-    // Frequency 0 along an axis carries the planar trend's leftovers, not grain.
-    for (int v = 1; v < kDctBlock; v++)
-        for (int u = 1; u < kDctBlock; u++) {
-            const double p = power.at<double>(v, u);
-            horizontal[u] += p;
-            vertical[v] += p;
-        }
-    double sh = 0, sv = 0;
-    for (int i = 0; i < kDctBlock; i++) sh += horizontal[i], sv += vertical[i];
-    for (int i = 0; i < kDctBlock; i++) {
-        if (sh > 0) horizontal[i] /= sh;
-        if (sv > 0) vertical[i] /= sv;
-    }
-}
-
 namespace {
 
-int nearest_model(const PowerMarginal& observed, const std::array<PowerMarginal, kMaxCutoff + 1>& models, double* mismatch) {
+template <class Correlation>
+int nearest_model(Correlation r, const CutoffModels& models, double* mismatch) {
     int best = 8;
     double best_d = std::numeric_limits<double>::infinity();
     for (int c = kMinCutoff; c <= kMaxCutoff; c++) {
-        double d = 0;
-        for (int i = 1; i < kDctBlock; i++) d += (observed[i] - models[c][i]) * (observed[i] - models[c][i]);
+        // Above cut-off 7 the templates ring (negative correlation at lag 2) where smooth
+        // grain has none, so no cut-off matches every lag: lag 1, which the grain's apparent
+        // size follows, weighs three times lag 2 (squared errors over lags 1-3 let the
+        // ringing pull the choice a step or two coarser than lag 1 wants).
+        const double d = 3 * std::fabs(r(models.lags[c], 1) - r.observed[1]) + std::fabs(r(models.lags[c], 2) - r.observed[2]);
         if (d < best_d) best_d = d, best = c;
     }
     if (mismatch) *mismatch = best_d;
     return best;
 }
 
+bool overlaps(int bin, int lower, int upper) {
+    const int lo = bin * (256 / kPowerBins), hi = lo + 256 / kPowerBins - 1;
+    return hi >= lower && lo <= upper;
+}
+
 }  // namespace
 
-CutoffEstimate match_cutoffs(const cv::Mat& power, const CutoffModels& models) {
+CutoffEstimate match_cutoffs(const LagSums& observed, const CutoffModels& models) {
     CutoffEstimate c;
-    power_marginals(power, c.horizontal_power, c.vertical_power);
-    c.horizontal = nearest_model(c.horizontal_power, models.horizontal, &c.horizontal_mismatch);
-    c.vertical = nearest_model(c.vertical_power, models.vertical, &c.vertical_mismatch);
+    for (int k = 1; k <= kMaxCorrelationLag; k++) {
+        c.observed_x[k] = observed.rx(k);
+        c.observed_y[k] = observed.ry(k);
+    }
+    struct {
+        const std::array<double, kMaxCorrelationLag + 1>& observed;
+        double operator()(const LagSums& m, int k) const { return m.rx(k); }
+    } along_x{c.observed_x};
+    struct {
+        const std::array<double, kMaxCorrelationLag + 1>& observed;
+        double operator()(const LagSums& m, int k) const { return m.ry(k); }
+    } along_y{c.observed_y};
+    c.horizontal = nearest_model(along_x, models, &c.horizontal_mismatch);
+    c.vertical = nearest_model(along_y, models, &c.vertical_mismatch);
     return c;
+}
+
+LagSums lag_sums_in(const PlaneObservations& obs, int lower, int upper) {
+    LagSums s;
+    for (int b = 0; b < kPowerBins; b++)
+        if (overlaps(b, lower, upper)) s.add(obs.lags[b]);
+    return s;
 }
 
 cv::Mat mean_power(const PlaneObservations& obs, int lower, int upper) {
     cv::Mat sum = cv::Mat::zeros(kDctBlock, kDctBlock, CV_64F);
     int n = 0;
     for (int b = 0; b < kPowerBins; b++) {
-        const int lo = b * (256 / kPowerBins), hi = lo + 256 / kPowerBins - 1;
-        if (hi < lower || lo > upper) continue;
+        if (!overlaps(b, lower, upper)) continue;
         sum += obs.dct_power[b];
         n += obs.dct_blocks[b];
     }

@@ -15,12 +15,12 @@ namespace filmgrain::analysis {
 namespace {
 
 constexpr int kCalibrationSize = 256;
-constexpr int kSpectrumPlaneSize = 512;  // each plane of the cut-off models: 64 blocks of 64x64
+constexpr int kModelPlaneSize = 512;  // each plane of the cut-off models: 64 blocks of 64x64
 constexpr int kMinDctBlocksPerInterval = 8;
 
 // The target synthesis measured on flat mid-grey pictures: grain level per unit of
 // comp_model_value[0] (for a component, cut-off pair, scale factor and value), and the
-// marginal spectra per cut-off. Measured exactly as the observations are, so the
+// grain's short-lag correlation per cut-off. Measured exactly as the observations are, so the
 // measurement's biases cancel.
 class FgcCalibration {
 public:
@@ -38,8 +38,8 @@ public:
     }
     const CutoffModels& cutoff_models(int c) {
         if (models_[c]) return *models_[c];
-        const int w = kSpectrumPlaneSize << (c > 0 ? chroma_shift_x(t_.chroma) : 0);
-        const int h = kSpectrumPlaneSize << (c > 0 ? chroma_shift_y(t_.chroma) : 0);
+        const int w = kModelPlaneSize << (c > 0 ? chroma_shift_x(t_.chroma) : 0);
+        const int h = kModelPlaneSize << (c > 0 ? chroma_shift_y(t_.chroma) : 0);
         FrameBuffer clean(w, h, {t_.chroma, t_.bit_depth}), grainy(w, h, {t_.chroma, t_.bit_depth});
         fill_frame(clean.view(), 128 << (t_.bit_depth - 8));
         CutoffModels m;
@@ -50,14 +50,9 @@ public:
                                          255 << (t_.bit_depth - 8));
             synthesize(clean, grainy, c, cut, cut, 5, value);
             const cv::Mat grain = plane_to_float(grainy.view(), c) - plane_to_float(clean.view(), c);
-            cv::Mat power = cv::Mat::zeros(kDctBlock, kDctBlock, CV_64F);
             for (int y = 0; y + kDctBlock <= grain.rows; y += kDctBlock)
                 for (int x = 0; x + kDctBlock <= grain.cols; x += kDctBlock)
-                    power += block_dct_power(grain(cv::Rect(x, y, kDctBlock, kDctBlock)));
-            PowerMarginal hm, vm;
-            power_marginals(power, hm, vm);
-            m.horizontal[cut] = hm;
-            m.vertical[cut] = vm;
+                    block_dct_power(grain(cv::Rect(x, y, kDctBlock, kDctBlock)), &m.lags[cut]);
         }
         models_[c] = m;
         return *models_[c];
@@ -203,7 +198,7 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
     std::array<FgcComponentLevels, 3> levels;
     for (int c = 0; c < num_comp; c++) {
         auto& rep = e.components[c];
-        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve);
+        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve, c > 0);
         if (!rep.note.empty()) continue;
         choose_intervals(rep.curve, target, rep);
         // Intervals too weak to show are left out: no interval, no grain there.
@@ -212,7 +207,7 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
             if (s.level >= min_level) kept.push_back(s);
         rep.intervals = kept;
         if (obs[c].total_dct_blocks() > 0) {
-            rep.pooled = match_cutoffs(mean_power(obs[c], 0, 255), cal.cutoff_models(c));
+            rep.pooled = match_cutoffs(lag_sums_in(obs[c], 0, 255), cal.cutoff_models(c));
         } else {
             rep.note = "no flat 64x64 block: default cut-offs 8";
         }
@@ -227,7 +222,7 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
             }
             std::pair<int, int> pair{rep.pooled.horizontal, rep.pooled.vertical};
             if (n >= kMinDctBlocksPerInterval) {
-                const auto ce = match_cutoffs(mean_power(obs[c], s.lower, s.upper), cal.cutoff_models(c));
+                const auto ce = match_cutoffs(lag_sums_in(obs[c], s.lower, s.upper), cal.cutoff_models(c));
                 pair = {ce.horizontal, ce.vertical};
                 differs |= std::abs(pair.first - rep.pooled.horizontal) > 1 || std::abs(pair.second - rep.pooled.vertical) > 1;
             }

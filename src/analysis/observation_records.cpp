@@ -8,7 +8,7 @@
 namespace filmgrain::analysis {
 namespace {
 
-constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '1'};
+constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '2'};
 
 class Writer {
 public:
@@ -65,7 +65,13 @@ std::vector<uint8_t> serialize_picture_observations(const PictureObservations& p
         }
         for (int b = 0; b < kPowerBins; b++) {
             w.put<int32_t>(p.dct_blocks[b]);
-            if (p.dct_blocks[b]) w.mat(p.dct_power[b]);  // only the bins that hold blocks
+            if (!p.dct_blocks[b]) continue;  // only the bins that hold blocks
+            w.mat(p.dct_power[b]);
+            const LagSums& l = p.lags[b];
+            for (const auto* a : {&l.x, &l.y, &l.x_pairs, &l.y_pairs})
+                for (double v : *a) w.put<double>(v);
+            w.put<double>(l.energy);
+            w.put<double>(l.samples);
         }
         for (const ArEquations& e : p.ar_halves) {
             w.mat(e.xtx);
@@ -103,7 +109,13 @@ PictureObservations deserialize_picture_observations(const uint8_t* data, std::s
             if (p.dct_blocks[b] < 0)
                 throw Error(ErrorCode::kMalformedPayload,
                             "observation record: dct_blocks = " + std::to_string(p.dct_blocks[b]) + " (allowed 0..)");
-            if (p.dct_blocks[b]) r.mat(p.dct_power[b], "dct_power");
+            if (!p.dct_blocks[b]) continue;
+            r.mat(p.dct_power[b], "dct_power");
+            LagSums& l = p.lags[b];
+            for (auto* a : {&l.x, &l.y, &l.x_pairs, &l.y_pairs})
+                for (double& v : *a) v = r.get<double>("lag sums");
+            l.energy = r.get<double>("lag sums");
+            l.samples = r.get<double>("lag sums");
         }
         for (ArEquations& e : p.ar_halves) {
             r.mat(e.xtx, "ar xtx");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include <opencv2/core.hpp>
@@ -330,14 +331,38 @@ std::vector<LevelPoint> fit_piecewise_linear(const LevelCurve& curve, int max_po
     return best;
 }
 
-std::string fit_component_curve(const std::vector<BlockSample>& blocks, int bit_depth, LevelCurve& curve) {
+std::string fit_component_curve(const std::vector<BlockSample>& blocks, int bit_depth, LevelCurve& curve, bool chroma) {
     curve = fit_level_curve(blocks);
     if (!curve.valid() || curve.observations < kMinObservations)
         return "too few flat blocks (" + std::to_string(curve.observations) + ") to estimate grain";
+    const double floor = kMinGrainLevel8 * double(1 << (bit_depth - 8));
+    char text[160];
+    if (chroma) {
+        std::vector<std::pair<double, int>> levels;
+        int total = 0;
+        for (int s = 0; s < kSubRanges; s++)
+            if (curve.sub_range_count[s] > 0) levels.push_back({curve.sub_range_level[s], curve.sub_range_count[s]}), total += curve.sub_range_count[s];
+        std::sort(levels.begin(), levels.end());
+        double median = 0;
+        for (int seen = 0; const auto& [level, count] : levels)
+            if ((seen += count) * 2 >= total) {
+                median = level;
+                break;
+            }
+        if (median < floor) {
+            std::snprintf(text, sizeof text, "no grain: the typical level %.2f is below %.1f (8-bit units)",
+                          median / double(1 << (bit_depth - 8)), kMinGrainLevel8);
+            return text;
+        }
+        return {};
+    }
     double peak = 0;
     for (int i = curve.observed_low; i <= curve.observed_high; i++) peak = std::max(peak, curve.level[i]);
-    if (peak < kMinGrainLevel8 * double(1 << (bit_depth - 8)))
-        return "no grain: the largest level is below " + std::to_string(kMinGrainLevel8) + " (8-bit units)";
+    if (peak < floor) {
+        std::snprintf(text, sizeof text, "no grain: the largest level %.2f is below %.1f (8-bit units)",
+                      peak / double(1 << (bit_depth - 8)), kMinGrainLevel8);
+        return text;
+    }
     return {};
 }
 

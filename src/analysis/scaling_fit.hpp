@@ -30,8 +30,13 @@ LevelCurve fit_level_curve(const std::vector<BlockSample>& blocks);
 
 // The level curve of one component for either model, and why it carries no grain: too few
 // flat blocks to trust the fit, or no level above kMinGrainLevel8 (8-bit units, scaled to
-// `bit_depth`). Returns the reason, empty when the component has grain.
-std::string fit_component_curve(const std::vector<BlockSample>& blocks, int bit_depth, LevelCurve& curve);
+// `bit_depth`). For luma the level is the largest over intensity bands; for chroma, the
+// typical one (the block-count-weighted median of the sub-ranges): chroma without grain
+// leaves only the denoiser's floor and a few leaked texture blocks, which lifted single
+// sub-ranges over the threshold and gave luma-only grain chroma grain of its own.
+// Returns the reason, empty when the component has grain.
+std::string fit_component_curve(const std::vector<BlockSample>& blocks, int bit_depth, LevelCurve& curve,
+                                bool chroma = false);
 
 // Contiguous intensity intervals, each with one level: the segmentation with the least
 // weighted squared error (the Lloyd-Max criterion restricted to intervals; solved exactly by
