@@ -24,6 +24,7 @@ struct AnalyzeOptions {
     int max_frames = 32;
     int temporal_radius = 2;
     double accuracy = 0.05;
+    double max_error = 0.25;  // the accuracy check: a component missing its levels by more is refused
     int max_lag = 3;
     bool spatial = false;
     bool force = false;  // write components that fail their accuracy check

@@ -79,6 +79,10 @@ LevelCurve fit_level_curve(const std::vector<BlockSample>& blocks) {
         double ss = 0;
         for (float x : v) ss += double(x) * x;
         curve.sub_range_level[s] = std::sqrt(ss / v.size());  // levels combine as variances
+        double sum = 0;
+        for (float x : v) sum += x;
+        const double mean = sum / double(v.size());
+        curve.sub_range_spread[s] = v.size() > 1 ? std::sqrt(std::max(0.0, (ss - sum * mean) / double(v.size() - 1))) : mean;
         curve.observations += v.size();
         px.push_back(sub_range_centre(s) / 255.0);
         py.push_back(curve.sub_range_level[s]);
@@ -214,8 +218,13 @@ double worst_band_error(const LevelCurve& curve, const std::vector<double>& appr
     double worst = 0;
     for (int b = 0; b < 256; b += kErrorBandWidth) {
         int blocks = 0;
-        for (int s = b / kSubRangeWidth; s < (b + kErrorBandWidth) / kSubRangeWidth; s++) blocks += curve.sub_range_count[s];
+        double spread2 = 0;  // sum of n s^2: the band's level is a mean of its blocks'
+        for (int s = b / kSubRangeWidth; s < (b + kErrorBandWidth) / kSubRangeWidth; s++) {
+            blocks += curve.sub_range_count[s];
+            spread2 += curve.sub_range_count[s] * curve.sub_range_spread[s] * curve.sub_range_spread[s];
+        }
         if (blocks < kMinPerSubRange) continue;
+        const double standard_error = std::sqrt(spread2) / blocks;
         double w = 0, level = 0, described = 0;
         for (int i = b; i < b + kErrorBandWidth; i++) {
             if (curve.weight[i] <= 0) continue;
@@ -226,7 +235,7 @@ double worst_band_error(const LevelCurve& curve, const std::vector<double>& appr
         if (w <= 0) continue;
         level /= w;
         described /= w;
-        const double e = std::fabs(described - level) / std::max(level, 0.25 * peak);
+        const double e = std::max(0.0, std::fabs(described - level) - 2 * standard_error) / std::max(level, 0.25 * peak);
         if (e > worst) {
             worst = e;
             if (worst_band_lower) *worst_band_lower = b;
@@ -303,9 +312,11 @@ std::vector<LevelPoint> fit_piecewise_linear(const LevelCurve& curve, int max_po
     // (chroma, observed over a few dozen values near 128, went to 3x its level).
     std::vector<int> knots;
     const int lo = std::clamp(curve.observed_low, 0, 255), hi = std::clamp(curve.observed_high, lo, 255);
+    // Every 8 values to start with (the points are then removed least damage first): a
+    // lattice of 16 could not follow chroma curves observed over a few dozen values.
     knots.push_back(lo);
-    for (int v = (lo / 16 + 1) * 16; v < hi; v += 16)
-        if (v - lo >= 4 && hi - v >= 4) knots.push_back(v);
+    for (int v = (lo / 8 + 1) * 8; v < hi; v += 8)
+        if (v - lo >= kSubRangeWidth - 1 && hi - v >= kSubRangeWidth - 1) knots.push_back(v);
     if (hi > lo) knots.push_back(hi);
     constexpr double kSmoothing = 1e-3;
     std::vector<LevelPoint> best = fit_knots(curve, knots, kSmoothing);

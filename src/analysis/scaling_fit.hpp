@@ -19,6 +19,7 @@ struct LevelCurve {
     std::array<double, 256> weight{};  // observations supporting each intensity (0 = extrapolated)
     std::array<double, kSubRanges> sub_range_level{};
     std::array<int, kSubRanges> sub_range_count{};
+    std::array<double, kSubRanges> sub_range_spread{};  // standard deviation of the blocks' levels
     int observed_low = 255, observed_high = 0;  // intensity range with observations
     std::size_t observations = 0;               // after outlier removal
     std::size_t outliers = 0;
@@ -55,12 +56,13 @@ double relative_error(const LevelCurve& curve, const std::vector<double>& approx
 double rms_relative_error(const LevelCurve& curve, const std::vector<double>& approx);
 
 // The accuracy every fit is held to: per band of kErrorBandWidth intensities with
-// observations, |mean description - mean level| relative to the band's own level (floored at
-// a quarter of the peak, so that near-zero levels do not dominate); the worst band. Bands
-// count alike whatever their number of blocks: a dark band seen in a few blocks needs its
-// own interval as much as the well-observed midtones (a count-weighted criterion let one
-// interval cover both, 17-32 % low in the darks). Averaging over a band keeps the
-// sub-ranges' sampling noise out.
+// observations, |mean description - mean level| beyond twice the standard error of the
+// band's measured level, relative to the band's own level (floored at a quarter of the
+// peak, so that near-zero levels do not dominate); the worst band. Bands count alike
+// whatever their number of blocks: a dark band seen in a few blocks needs its own interval
+// as much as the well-observed midtones (a count-weighted criterion let one interval cover
+// both, 17-32 % low in the darks). The standard error keeps fits from chasing, and the
+// accuracy check from refusing, what the measurement itself cannot tell apart.
 inline constexpr int kErrorBandWidth = 16;
 double worst_band_error(const LevelCurve& curve, const std::vector<double>& approx, int* worst_band_lower = nullptr);
 
