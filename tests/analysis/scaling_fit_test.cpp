@@ -66,5 +66,23 @@ TEST(ScalingFit, WorstBandErrorCountsEveryBandAlike) {
     EXPECT_TRUE(dark_covered);
 }
 
+TEST(ScalingFit, ChromaGrainByItsTypicalLevel) {
+    // Grain-free chroma: the denoiser's floor everywhere, a few leaked texture blocks lifting
+    // one sub-range over the threshold.
+    std::vector<BlockSample> blocks;
+    add_blocks(blocks, 100, 160, 2, [](int) { return 0.15; }, 4);
+    add_blocks(blocks, 128, 131, 6, [](int) { return 0.9; }, 5);
+    LevelCurve curve;
+    EXPECT_NE(fit_component_curve(blocks, 8, curve, true), "") << "chroma at the floor has no grain";
+    EXPECT_EQ(fit_component_curve(blocks, 8, curve, false), "") << "luma's rule: the largest band";
+    // Real chroma grain over a narrow range is kept.
+    std::vector<BlockSample> grain;
+    add_blocks(grain, 120, 136, 4, [](int) { return 1.2; }, 6);
+    EXPECT_EQ(fit_component_curve(grain, 8, curve, true), "");
+    // 10 bits: the threshold scales.
+    for (auto& b : grain) b.sigma *= 0.25f;  // 0.3 code values at 10 bits = 0.075 at 8
+    EXPECT_NE(fit_component_curve(grain, 10, curve, true), "");
+}
+
 }  // namespace
 }  // namespace filmgrain::analysis
