@@ -34,8 +34,9 @@ fs::path scratch(const std::string& name) {
     return d;
 }
 
-// A short grainy Y4M clip (FGC grain, 8-bit 4:2:0) and its clean original.
-void write_clip(const fs::path& grainy, const fs::path& clean_path, int frames) {
+// A short grainy Y4M clip (FGC grain, 8-bit 4:2:0) and its clean original; `steps`: the
+// grain alternates between weak and strong every 32 intensity values.
+void write_clip(const fs::path& grainy, const fs::path& clean_path, int frames, bool steps = false) {
     const PixelFormat fmt{ChromaFormat::k420, 8};
     FrameBuffer clean = analysis_test::make_clean_picture(256, 256, fmt);
     VideoInfo info;
@@ -49,6 +50,15 @@ void write_clip(const fs::path& grainy, const fs::path& clean_path, int frames) 
     iv.intensity_interval_upper_bound = 255;
     iv.comp_model_value = {150, 8, 8, 0, 0, 0};
     p.comp[0] = {true, 2, {iv}};
+    if (steps) {
+        p.comp[0].intervals.clear();
+        for (int k = 0; k < 8; k++) {
+            iv.intensity_interval_lower_bound = 32 * k;
+            iv.intensity_interval_upper_bound = 32 * k + 31;
+            iv.comp_model_value = {k % 2 ? 220 : 40, 8, 8, 0, 0, 0};
+            p.comp[0].intervals.push_back(iv);
+        }
+    }
     FgcStreamSynthesis s(FgcOptions{});
     for (int k = 0; k < frames; k++) {
         FrameBuffer g = clean;
@@ -148,6 +158,35 @@ TEST(AnalysisCli, BadArgumentsLeaveNoOutput) {
     EXPECT_NE(run_command(tool() + " preset --photon-noise 0 --model av1 --size 64x64 -o " + (d / "q.json").string(), &log), 0);
     EXPECT_NE(log.find("ISO"), std::string::npos) << log;
     EXPECT_FALSE(fs::exists(d / "q.json"));
+    fs::remove_all(d);
+}
+
+// The accuracy check: a component whose fit misses its measured levels by more than
+// --max-error is refused, named with its band, the miss and the limit, and nothing is
+// written; --force writes it.
+TEST(AnalysisCli, AccuracyCheckRefusesUnlessForced) {
+    const fs::path d = scratch("accuracy");
+    write_clip(d / "grainy.y4m", d / "clean.y4m", 4, true);
+    // AV1's 14 points cannot follow eight plateaus
+    const std::string base = tool() + " analyze " + (d / "grainy.y4m").string() + " --denoised " + (d / "clean.y4m").string() +
+                             " --model av1 --max-error 0.05 -o " + (d / "p.json").string() + " --table " +
+                             (d / "t.tbl").string();
+    std::string log;
+    EXPECT_NE(run_command(base, &log), 0);
+    EXPECT_NE(log.find("Y: the fitted levels miss the measured grain level by"), std::string::npos) << log;
+    EXPECT_NE(log.find("--max-error"), std::string::npos) << log;
+    EXPECT_NE(log.find("--force"), std::string::npos) << log;
+    EXPECT_FALSE(fs::exists(d / "p.json"));
+    EXPECT_FALSE(fs::exists(d / "t.tbl"));
+    EXPECT_EQ(run_command(base + " --force", &log), 0) << log;
+    EXPECT_NE(log.find("written despite failing its accuracy check (--force)"), std::string::npos) << log;
+    EXPECT_TRUE(fs::exists(d / "p.json"));
+    // the default check passes this clip
+    fs::remove(d / "p.json");
+    EXPECT_EQ(run_command(tool() + " analyze " + (d / "grainy.y4m").string() + " --model fgc -o " + (d / "p.json").string(), &log), 0)
+        << log;
+    EXPECT_NE(run_command(tool() + " analyze " + (d / "grainy.y4m").string() + " --model fgc --max-error 0 -o " + (d / "q.json").string(), &log), 0);
+    EXPECT_NE(log.find("--max-error"), std::string::npos) << log;
     fs::remove_all(d);
 }
 
