@@ -141,17 +141,17 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
         for (int i = 0; i < npos && i < int(co.size()); i++) (*cc[c])[i] = q(co[i]);
         if (luma && int(co.size()) > npos) (*cc[c])[npos] = q(co[npos]);
     }
-    if (target.chroma == ChromaFormat::k420 && (p.num_cb_points == 0) != (p.num_cr_points == 0)) {
-        // 4:2:0 signals both chroma functions or neither (AV1 5.9.30): the grain-free one
-        // gets a single zero point, here for the calibration and below for the result.
+    // 4:2:0 signals both chroma functions or neither (AV1 5.9.30): a grain-free one gets a
+    // single zero point, for the calibration and for the result.
+    const auto pair_chroma_functions = [&] {
+        if (target.chroma != ChromaFormat::k420 || (p.num_cb_points == 0) == (p.num_cr_points == 0)) return;
         const int c = p.num_cb_points == 0 ? 1 : 2;
         *nps[c] = 1;
         vals[c][0] = 128;
         scal[c][0] = 0;
-    }
+    };
+    pair_chroma_functions();
     // Grain level per unit of scaling at scaling_shift 8, per plane, over several seeds.
-    const int ssx = chroma_shift_x(target.chroma), ssy = chroma_shift_y(target.chroma);
-    (void)ssx, (void)ssy;
     FrameBuffer clean(kCalibrationSize, kCalibrationSize, {target.chroma, target.bit_depth}), grainy;
     fill_frame(clean.view(), 128 << (clean.format().bit_depth - 8));
     grainy = clean;
@@ -188,13 +188,7 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
         for (int i = 0; i < n; i++) nonzero |= scal[c][i] > 0;
         *nps[c] = nonzero ? n : 0;
     }
-    if (target.chroma == ChromaFormat::k420 && (p.num_cb_points == 0) != (p.num_cr_points == 0)) {
-        int* n = p.num_cb_points == 0 ? &p.num_cb_points : &p.num_cr_points;
-        int c = p.num_cb_points == 0 ? 1 : 2;
-        *n = 1;
-        vals[c][0] = 128;
-        scal[c][0] = 0;
-    }
+    pair_chroma_functions();
     if (p.num_y_points == 0) {
         // Without luma grain, chroma filters have no luma term and the luma filter is unused.
         for (int c = 1; c < 3; c++) (*cc[c])[p.num_pos_luma()] = 128;

@@ -6,8 +6,10 @@
 namespace filmgrain::analysis {
 namespace {
 
-template <class Correlation>
-int nearest_model(Correlation r, const CutoffModels& models, double* mismatch) {
+// The cut-off whose model grain correlates like `observed` along one axis.
+int nearest_model(const std::array<double, kMaxCorrelationLag + 1>& observed, const CutoffModels& models, bool horizontal,
+                  double* mismatch) {
+    const auto r = [horizontal](const LagSums& m, int k) { return horizontal ? m.rx(k) : m.ry(k); };
     int best = 8;
     double best_d = std::numeric_limits<double>::infinity();
     for (int c = kMinCutoff; c <= kMaxCutoff; c++) {
@@ -15,7 +17,7 @@ int nearest_model(Correlation r, const CutoffModels& models, double* mismatch) {
         // grain has none, so no cut-off matches every lag: lag 1, which the grain's apparent
         // size follows, weighs three times lag 2 (squared errors over lags 1-3 let the
         // ringing pull the choice a step or two coarser than lag 1 wants).
-        const double d = 3 * std::fabs(r(models.lags[c], 1) - r.observed[1]) + std::fabs(r(models.lags[c], 2) - r.observed[2]);
+        const double d = 3 * std::fabs(r(models.lags[c], 1) - observed[1]) + std::fabs(r(models.lags[c], 2) - observed[2]);
         if (d < best_d) best_d = d, best = c;
     }
     if (mismatch) *mismatch = best_d;
@@ -35,16 +37,8 @@ CutoffEstimate match_cutoffs(const LagSums& observed, const CutoffModels& models
         c.observed_x[k] = observed.rx(k);
         c.observed_y[k] = observed.ry(k);
     }
-    struct {
-        const std::array<double, kMaxCorrelationLag + 1>& observed;
-        double operator()(const LagSums& m, int k) const { return m.rx(k); }
-    } along_x{c.observed_x};
-    struct {
-        const std::array<double, kMaxCorrelationLag + 1>& observed;
-        double operator()(const LagSums& m, int k) const { return m.ry(k); }
-    } along_y{c.observed_y};
-    c.horizontal = nearest_model(along_x, models, &c.horizontal_mismatch);
-    c.vertical = nearest_model(along_y, models, &c.vertical_mismatch);
+    c.horizontal = nearest_model(c.observed_x, models, true, &c.horizontal_mismatch);
+    c.vertical = nearest_model(c.observed_y, models, false, &c.vertical_mismatch);
     return c;
 }
 
@@ -53,6 +47,13 @@ LagSums lag_sums_in(const PlaneObservations& obs, int lower, int upper) {
     for (int b = 0; b < kPowerBins; b++)
         if (overlaps(b, lower, upper)) s.add(obs.lags[b]);
     return s;
+}
+
+int dct_blocks_in(const PlaneObservations& obs, int lower, int upper) {
+    int n = 0;
+    for (int b = 0; b < kPowerBins; b++)
+        if (overlaps(b, lower, upper)) n += obs.dct_blocks[b];
+    return n;
 }
 
 cv::Mat mean_power(const PlaneObservations& obs, int lower, int upper) {

@@ -36,6 +36,9 @@ CutoffEstimate match_cutoffs(const LagSums& observed, const CutoffModels& models
 // Lag sums of the observation bins that overlap [lower, upper] (8-bit).
 LagSums lag_sums_in(const PlaneObservations& obs, int lower, int upper);
 
+// 64x64 blocks observed in the bins that overlap [lower, upper] (8-bit).
+int dct_blocks_in(const PlaneObservations& obs, int lower, int upper);
+
 // Mean DCT power of the observation bins that overlap [lower, upper] (8-bit): the report's
 // spectrum.
 cv::Mat mean_power(const PlaneObservations& obs, int lower, int upper);

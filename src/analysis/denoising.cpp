@@ -78,24 +78,34 @@ cv::Point best_shift(const cv::Mat& a, const cv::Mat& b, cv::Point around, int r
 
 }  // namespace
 
-cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour) {
+namespace {
+constexpr int kCoarse = 4, kCoarseRadius = 8, kFineRadius = kCoarse - 1, kMargin = 8 * kCoarse;
+}  // namespace
+
+MotionPicture prepare_motion_picture(const cv::Mat& luma) {
+    MotionPicture m;
+    if (luma.cols < 4 * kMargin || luma.rows < 4 * kMargin) return m;
+    cv::GaussianBlur(luma, m.fine, cv::Size(0, 0), 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::resize(m.fine, m.coarse, cv::Size(luma.cols / kCoarse, luma.rows / kCoarse), 0, 0, cv::INTER_AREA);
+    return m;
+}
+
+cv::Point estimate_global_shift(const MotionPicture& a, const MotionPicture& b) {
     // Block matching of the whole picture, coarse to fine, on low-passed pictures: the grain
     // (independent between pictures) averages out and the content decides. Phase
     // correlation whitens the spectrum, where grain owns the high frequencies: it missed
     // pans by a sample or two and found motion in static grain.
-    constexpr int kCoarse = 4, kCoarseRadius = 8, kFineRadius = kCoarse - 1, kMargin = 8 * kCoarse;
-    if (centre.size() != neighbour.size() || centre.cols < 4 * kMargin || centre.rows < 4 * kMargin) return {0, 0};
-    cv::Mat a, b, a4, b4;
-    cv::GaussianBlur(centre, a, cv::Size(0, 0), 1.5, 1.5, cv::BORDER_REFLECT);
-    cv::GaussianBlur(neighbour, b, cv::Size(0, 0), 1.5, 1.5, cv::BORDER_REFLECT);
-    cv::resize(a, a4, cv::Size(a.cols / kCoarse, a.rows / kCoarse), 0, 0, cv::INTER_AREA);
-    cv::resize(b, b4, cv::Size(b.cols / kCoarse, b.rows / kCoarse), 0, 0, cv::INTER_AREA);
-    const cv::Point coarse = best_shift(a4, b4, {0, 0}, kCoarseRadius, kMargin / kCoarse, 1, nullptr);
+    if (a.fine.empty() || b.fine.empty() || a.fine.size() != b.fine.size()) return {0, 0};
+    const cv::Point coarse = best_shift(a.coarse, b.coarse, {0, 0}, kCoarseRadius, kMargin / kCoarse, 1, nullptr);
     double cost = 0;
-    const cv::Point fine = best_shift(a, b, coarse * kCoarse, kFineRadius, kMargin, 2, &cost);
+    const cv::Point fine = best_shift(a.fine, b.fine, coarse * kCoarse, kFineRadius, kMargin, 2, &cost);
     // A clear winner only: on flat content every shift matches alike and nothing moved.
-    const double still = shifted_difference(a, b, 0, 0, kMargin, 2);
+    const double still = shifted_difference(a.fine, b.fine, 0, 0, kMargin, 2);
     return cost < 0.8 * still ? fine : cv::Point(0, 0);
+}
+
+cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour) {
+    return estimate_global_shift(prepare_motion_picture(centre), prepare_motion_picture(neighbour));
 }
 
 namespace {

@@ -18,6 +18,15 @@ struct GrainEstimate {
 // (0, 0) when no shift matches clearly better than none (static or flat pictures).
 cv::Point estimate_global_shift(const cv::Mat& centre, const cv::Mat& neighbour);
 
+// A luma plane made ready for estimate_global_shift once (every picture is the centre of
+// one analysis and the neighbour of up to 2 * radius others): low-passed at full resolution
+// and at a quarter. Empty for pictures too small to estimate motion on.
+struct MotionPicture {
+    cv::Mat fine, coarse;
+};
+MotionPicture prepare_motion_picture(const cv::Mat& luma);
+cv::Point estimate_global_shift(const MotionPicture& centre, const MotionPicture& neighbour);
+
 // One neighbour of the temporal window as the denoiser uses it.
 struct TemporalNeighbour {
     const cv::Mat* plane = nullptr;

@@ -215,13 +215,8 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
         std::vector<std::pair<int, int>> own;
         bool differs = false;
         for (const auto& s : rep.intervals) {
-            int n = 0;
-            for (int b = 0; b < kPowerBins; b++) {
-                const int lo = b * (256 / kPowerBins);
-                if (lo + 256 / kPowerBins - 1 >= s.lower && lo <= s.upper) n += obs[c].dct_blocks[b];
-            }
             std::pair<int, int> pair{rep.pooled.horizontal, rep.pooled.vertical};
-            if (n >= kMinDctBlocksPerInterval) {
+            if (dct_blocks_in(obs[c], s.lower, s.upper) >= kMinDctBlocksPerInterval) {
                 const auto ce = match_cutoffs(lag_sums_in(obs[c], s.lower, s.upper), cal.cutoff_models(c));
                 pair = {ce.horizontal, ce.vertical};
                 differs |= std::abs(pair.first - rep.pooled.horizontal) > 1 || std::abs(pair.second - rep.pooled.vertical) > 1;

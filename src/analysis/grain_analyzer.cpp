@@ -56,11 +56,20 @@ double GrainAnalyzer::reliable_fraction() const {
     return flat_samples_ ? double(reliable_samples_) / double(flat_samples_) : 0.0;
 }
 
+const cv::Mat& GrainAnalyzer::Held::plane(int p) {
+    if (planes[p].empty()) planes[p] = plane_to_float(source.view(), p);
+    return planes[p];
+}
+
+const MotionPicture& GrainAnalyzer::Held::motion_picture() {
+    if (!motion) motion = prepare_motion_picture(plane(0));
+    return *motion;
+}
+
 void GrainAnalyzer::analyse(std::size_t wi) {
-    const Held& centre = window_[wi];
+    Held& centre = window_[wi];
     const int k = centre.index;
-    FrameBuffer& src_fb = const_cast<FrameBuffer&>(centre.source);
-    const FrameView src = src_fb.view();
+    const FrameView src = centre.source.view();
     ObservationRequest req;
     req.dct_power = true;  // FGC cut-offs; the spectrum of the report for both models
     req.ar_equations = o_.model == GrainModel::kAv1;
@@ -83,24 +92,22 @@ void GrainAnalyzer::analyse(std::size_t wi) {
         return m;
     };
     for (int p = 0; p < src.plane_count(); p++) {
-        const cv::Mat s = plane_to_float(src, p);
+        const cv::Mat& s = centre.plane(p);
         const int sx = p > 0 ? chroma_shift_x(fmt_.chroma) : 0, sy = p > 0 ? chroma_shift_y(fmt_.chroma) : 0;
         GrainEstimate g;
         if (centre.denoised) {
             g = grain_from_denoised(s, plane_to_float(centre.denoised->view(), p));
         } else {
-            std::vector<cv::Mat> planes;
-            std::vector<TemporalNeighbour> neighbours;
-            planes.reserve(window_.size());
-            for (const auto& h : window_)
-                if (h.index != k && std::abs(h.index - k) <= o_.temporal_radius)
-                    planes.push_back(plane_to_float(const_cast<FrameBuffer&>(h.source).view(), p));
+            std::vector<Held*> held;
+            for (auto& h : window_)
+                if (h.index != k && std::abs(h.index - k) <= o_.temporal_radius) held.push_back(&h);
             if (p == 0)
-                for (const cv::Mat& m : planes) luma_shifts.push_back(estimate_global_shift(s, m));
-            std::vector<cv::Mat> guides(planes.size());
-            for (std::size_t j = 0; j < planes.size(); j++) {
+                for (Held* h : held) luma_shifts.push_back(estimate_global_shift(centre.motion_picture(), h->motion_picture()));
+            std::vector<TemporalNeighbour> neighbours;
+            std::vector<cv::Mat> guides(held.size());
+            for (std::size_t j = 0; j < held.size(); j++) {
                 TemporalNeighbour n;
-                n.plane = &planes[j];
+                n.plane = &held[j]->plane(p);
                 n.shift = {int(std::lround(luma_shifts[j].x / double(1 << sx))), int(std::lround(luma_shifts[j].y / double(1 << sy)))};
                 if (p > 0 && j < luma_accepted.size()) {
                     guides[j] = to_plane_size(luma_accepted[j], s.size());

@@ -6,11 +6,13 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "analysis/av1_estimation.hpp"
 #include "analysis/block_observations.hpp"
+#include "analysis/denoising.hpp"
 #include "analysis/fgc_estimation.hpp"
 #include "core/frame_buffer.hpp"
 
@@ -76,10 +78,16 @@ private:
     AnalysisOptions o_;
     PixelFormat fmt_;
     int width_, height_;
+    // A picture of the temporal window, with what its analyses and its neighbours' share,
+    // made once on first use: its planes as float and its luma ready for motion estimation.
     struct Held {
         int index;
         FrameBuffer source;
         std::unique_ptr<FrameBuffer> denoised;
+        std::array<cv::Mat, 3> planes{};
+        std::optional<MotionPicture> motion;
+        const cv::Mat& plane(int p);
+        const MotionPicture& motion_picture();
     };
     std::deque<Held> window_;
     int frames_seen_ = 0, frames_analysed_ = 0;
