@@ -1,6 +1,7 @@
 // Shared pieces of the `filmgrain` subcommands: option parsing helpers and error exits.
 #pragma once
 #include <CLI/CLI.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,19 @@ Options parse_subcommand_arguments(const char* name, void (*add_options)(CLI::Ap
     add_options(&app, o);
     parse_arguments(app, args);
     return o;
+}
+
+// A subcommand whose options `add_options` defines (the same definitions
+// parse_subcommand_arguments parses) and `run` carries out, returning the exit code.
+template <typename Options, typename Run>
+void register_subcommand(CLI::App& app, const char* name, const char* description,
+                         void (*add_options)(CLI::App*, Options&), Run run) {
+    auto o = std::make_shared<Options>();
+    CLI::App* sub = app.add_subcommand(name, description);
+    add_options(sub, *o);
+    sub->callback([o, run]() {
+        if (const int rc = run(*o)) throw CLI::RuntimeError(rc);
+    });
 }
 
 void register_apply(CLI::App& app);

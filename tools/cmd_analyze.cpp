@@ -379,13 +379,8 @@ void add_analyze_options(CLI::App* sub, AnalyzeOptions& o) {
 }
 
 void register_analyze(CLI::App& app) {
-    auto o = std::make_shared<AnalyzeOptions>();
-    CLI::App* sub = app.add_subcommand("analyze", "estimate FGC SEI or AV1 film grain parameters from grainy video");
-    add_analyze_options(sub, *o);
-    sub->callback([o]() {
-        int rc = AnalysisJob(*o).run();
-        if (rc) throw CLI::RuntimeError(rc);
-    });
+    register_subcommand(app, "analyze", "estimate FGC SEI or AV1 film grain parameters from grainy video",
+                        add_analyze_options, [](const AnalyzeOptions& o) { return AnalysisJob(o).run(); });
 }
 
 #else

@@ -264,13 +264,8 @@ void add_apply_options(CLI::App* sub, ApplyOptions& o) {
 }
 
 void register_apply(CLI::App& app) {
-    auto o = std::make_shared<ApplyOptions>();
-    CLI::App* sub = app.add_subcommand("apply", "add film grain to a raw YUV or Y4M file");
-    add_apply_options(sub, *o);
-    sub->callback([o]() {
-        int rc = ApplyJob(*o).run_all();
-        if (rc) throw CLI::RuntimeError(rc);
-    });
+    register_subcommand(app, "apply", "add film grain to a raw YUV or Y4M file", add_apply_options,
+                        [](const ApplyOptions& o) { return ApplyJob(o).run_all(); });
 }
 
 }  // namespace filmgrain::cli

@@ -136,16 +136,15 @@ void add_stats_options(CLI::App* sub, StatsOptions& o) {
 }
 
 void register_stats(CLI::App& app) {
-    auto o = std::make_shared<StatsOptions>();
-    CLI::App* sub = app.add_subcommand("stats", "grain statistics of a clean and a grainy picture or video");
-    add_stats_options(sub, *o);
-    sub->callback([o]() {
-        const nlohmann::json j = grain_statistics_report(*o);
-        if (o->json)
-            std::printf("%s\n", j.dump(2).c_str());
-        else
-            print_text(j);
-    });
+    register_subcommand(app, "stats", "grain statistics of a clean and a grainy picture or video", add_stats_options,
+                        [](const StatsOptions& o) {
+                            const nlohmann::json j = grain_statistics_report(o);
+                            if (o.json)
+                                std::printf("%s\n", j.dump(2).c_str());
+                            else
+                                print_text(j);
+                            return 0;
+                        });
 }
 
 }  // namespace filmgrain::cli
