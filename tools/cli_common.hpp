@@ -66,6 +66,7 @@ void register_params(CLI::App& app);
 void register_demo(CLI::App& app, bool* ran_default);
 void register_inspect(CLI::App& app);
 void register_decode(CLI::App& app);
+void register_verify(CLI::App& app);
 int run_demo();
 
 // Writes a PNG with the clean and the grainy crop side by side (through the image module).

@@ -30,6 +30,7 @@ std::unique_ptr<CLI::App> make_app(bool* ran_default) {
     register_demo(*app, ran_default);
     register_inspect(*app);
     register_decode(*app);
+    register_verify(*app);
     return app;
 }
 

@@ -58,6 +58,26 @@ struct SessionOptions {
     // true: the scalar reference stages instead of the vector ones (verification and
     // benchmarks; the output is identical).
     bool reference_kernels = false;
+    // true: apply() reports the parameters it synthesized each picture from
+    // (ApplyResult::applied), for tools that check a decoder against the session
+    // (`filmgrain verify`). Off by default: it copies the parameter set per picture.
+    bool report_applied_parameters = false;
+};
+
+// What apply() synthesized a picture from, as the stream state resolved it.
+struct AppliedGrain {
+    enum class Model { kNone, kFgc, kAv1 };
+    Model model = Model::kNone;
+    // FGC: the SEI in force, its syntax, the picture ids the seed came from (after
+    // FrameInfo::seed), and whether this picture brought its own SEI (else it persisted).
+    FgcParams fgc;
+    FgcCodec fgc_codec = FgcCodec::kHevc;
+    FgcPictureIds fgc_ids;
+    bool fgc_own_sei = false;
+    // AV1 and AFGS1: the set applied (update_grain resolved, seed and clipping as
+    // synthesized) and the matrix_coefficients used.
+    Av1FilmGrainParams av1;
+    int matrix_coefficients = 2;
 };
 
 struct FrameInfo {
@@ -76,6 +96,9 @@ struct ApplyResult {
     // (passthrough_invalid); `message` names the field. Not set for pictures that simply
     // have no grain (cancel, no AFGS1 payload or set for them, apply_grain = 0).
     bool parameters_refused = false;
+    // SessionOptions::report_applied_parameters: what the picture was synthesized from
+    // (absent when nothing governed it: no metadata, vfgs).
+    std::optional<AppliedGrain> applied;
 };
 
 class FG_API Session {

@@ -1,6 +1,7 @@
-// The analysis report's pictures as PNG files, written with libpng: OpenCV's own image
-// codecs (opencv_imgcodecs) would bring GDAL and about 80 more shared libraries into every
-// process of the tool, for three 8-bit RGB pictures.
+// The analysis report's pictures (OpenCV BGR matrices) as PNG files, through the reports'
+// shared libpng writer (report/png_file.hpp) rather than OpenCV's own image codecs
+// (opencv_imgcodecs would bring GDAL and about 80 more shared libraries into every process
+// of the tool, for three 8-bit RGB pictures).
 #pragma once
 #include <string>
 

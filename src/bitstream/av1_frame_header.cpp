@@ -458,6 +458,7 @@ private:
         if (!f.show_frame) return std::nullopt;
         Av1ShownFrame out;
         out.grain = grain;
+        out.other_slot_grain = std::move(other_slot_grain_);
         return out;
     }
 
@@ -550,6 +551,16 @@ private:
             p.grain_seed = seed;
             p.update_grain = 1;  // resolved
             p.film_grain_params_ref_idx = 0;
+            for (int i = 0; i < kRefsPerFrame; i++) {
+                const int other = f.ref_frame_idx[std::size_t(i)];
+                Av1FilmGrainParams q = slots_[std::size_t(other)].grain;
+                q.grain_seed = seed;
+                q.update_grain = 1;
+                q.film_grain_params_ref_idx = 0;
+                const bool listed = std::any_of(other_slot_grain_.begin(), other_slot_grain_.end(),
+                                                [&](const auto& e) { return e.first == other || e.second == q; });
+                if (other != ref && !listed && !(q == p)) other_slot_grain_.emplace_back(other, q);
+            }
             return p;
         }
         p.apply_grain = 1;
@@ -564,6 +575,7 @@ private:
     std::array<Av1FrameHeaderReader::Slot, 8>& slots_;
     BitReader r_;
     FrameState f_;
+    std::vector<std::pair<int, Av1FilmGrainParams>> other_slot_grain_;
 };
 
 }  // namespace

@@ -10,6 +10,8 @@
 #pragma once
 #include <array>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "bitstream/av1_obu.hpp"
 #include "bitstream/av1_sequence_header.hpp"
@@ -22,6 +24,10 @@ struct Av1ShownFrame {
     // from its reference slot (load_grain_params), apply_grain = 0 when it has none.
     Av1FilmGrainParams grain;
     bool show_existing_frame = false;
+    // update_grain = 0: the sets the frame's other references (ref_frame_idx) hold, with the
+    // header's grain_seed, as (slot, set), where they differ from the set loaded: what a
+    // decoder loading the wrong slot applies (`filmgrain verify` tries them).
+    std::vector<std::pair<int, Av1FilmGrainParams>> other_slot_grain;
 };
 
 class Av1FrameHeaderReader {

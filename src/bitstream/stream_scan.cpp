@@ -214,6 +214,8 @@ AccessUnit Av1StreamParser::push(const Av1TemporalUnit& tu) {
                         au.warnings.push_back("more than one shown frame in the temporal unit; the last one's "
                                               "film grain is kept");
                     au.av1_frame_grain = shown->grain;
+                    au.av1_show_existing_frame = shown->show_existing_frame;
+                    au.av1_other_slot_grain = std::move(shown->other_slot_grain);
                 }
             } catch (const Error& e) {
                 au.warnings.push_back("frame header OBU at byte " + std::to_string(obu.offset) + ": " + e.what());

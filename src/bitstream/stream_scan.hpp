@@ -66,6 +66,9 @@ struct AccessUnit {
     // AV1 with film_grain_params_present = 1: the film grain of the frame this unit shows,
     // from its frame header (update_grain = 0 resolved; apply_grain = 0 for none).
     std::optional<Av1FilmGrainParams> av1_frame_grain;
+    bool av1_show_existing_frame = false;  // the shown frame is a show_existing_frame
+    // update_grain = 0: what the frame's other reference slots hold (Av1ShownFrame)
+    std::vector<std::pair<int, Av1FilmGrainParams>> av1_other_slot_grain;
     std::vector<std::string> warnings;
 };
 

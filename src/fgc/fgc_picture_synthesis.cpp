@@ -84,7 +84,16 @@ void FgcPictureSynthesis::prepare(const ResolvedFgc& params) {
     }
 }
 
+void FgcPictureSynthesis::set_deviations(const FgcDeviations& deviations) {
+    deviations_ = deviations;
+    // template rows are pre-deblocked for the block size (template_generation.hpp); 0: not at all
+    cache_.reconfigure(flavour_ == FgcFlavour::kVtm ? TemplateTransform::kVvcDct2 : TemplateTransform::kRdd5Matrix,
+                       deviations.no_deblocking ? 0 : block_size_);
+    ar_cache_.clear();
+}
+
 bool FgcPictureSynthesis::optimized_for(const ResolvedFgc& params, const FrameView& src) const {
+    if (deviations_.any()) return false;
     if (kernels_ != Kernels::kOptimized || single_line_ || params.model_id != 0 || params.blending_mode_id != 0)
         return false;
     // ffmpeg: its deblocking depends on which blocks got grain, which the fused deblocking +
@@ -161,7 +170,8 @@ void FgcPictureSynthesis::apply(const ResolvedFgc& params, const FrameView& src,
     for (auto& s : scratch_) {
         if (!optimized) {
             grow(s.stripe, std::size_t(blocks_x * rb + 2) * rb);
-            if (flavour_ == FgcFlavour::kFfmpeg) grow(s.has_grain, std::size_t(blocks_x) * 4);
+            if (flavour_ == FgcFlavour::kFfmpeg || deviations_.blank_block_deblocking_toggled)
+                grow(s.has_grain, std::size_t(blocks_x) * 4);
             if (any_correlation) grow(s.rho, std::size_t(blocks_x * rb + 2) * rb);
         } else {
             grow(s.sums, std::size_t(blocks_x) * 4);

@@ -46,6 +46,26 @@ using ::filmgrain::Kernels;
 // 1920x1080 luma samples of the coded picture, 16 up to 3840x2160, 32 above (deriveFGSBlkSize).
 int default_block_size(FgcFlavour flavour, int luma_width, int luma_height);
 
+// Departures from the flavour's reference that decoder implementations are known to make,
+// re-synthesized by `filmgrain verify` (src/verify/fgc_mistakes) to name the one a decoder
+// made. They run on the scalar reference stripe only; all false is the flavour itself.
+struct FgcDeviations {
+    bool no_deblocking = false;  // neither the template rows nor the vertical block edges
+    // rdd5 / vtm / tr deblock every edge; FFmpeg only edges whose right block got grain
+    // (deblocking.hpp). Toggled: each takes the other's rule.
+    bool blank_block_deblocking_toggled = false;
+    // Partial blocks at the right and bottom: averaged over (and given grain in) the samples
+    // inside the picture (rdd5, ffmpeg, tr) or whole over edge-replicated padding (vtm).
+    // Toggled: each takes the other's.
+    bool partial_blocks_toggled = false;
+    // Chroma blocks take their intensity interval from the co-sited luma block's average
+    // (a 4:2:0 decoder that reuses luma's block averages) instead of their own.
+    bool chroma_interval_from_luma = false;
+    bool any() const {
+        return no_deblocking || blank_block_deblocking_toggled || partial_blocks_toggled || chroma_interval_from_luma;
+    }
+};
+
 class FgcPictureSynthesis {
 public:
     // flavour: rdd5, ffmpeg, vtm or tr (vtm: VVC DCT-2 templates and edge-replicated
@@ -64,6 +84,9 @@ public:
     // Adds grain to every component; pic_offset is RDD 5's POC + (idr_pic_id << 5) or the
     // POC alone for vtm. dst may alias src. Planes without grain are copied when dst != src.
     void apply(const ResolvedFgc& params, const FrameView& src, const FrameView& dst, int32_t pic_offset);
+
+    // Verification only (FgcDeviations); set before prepare().
+    void set_deviations(const FgcDeviations& deviations);
 
     int block_size() const { return block_size_; }
     int single_line_blocks() const { return single_line_; }
@@ -112,6 +135,7 @@ private:
 
     FgcFlavour flavour_;
     int block_size_;
+    FgcDeviations deviations_;
     int single_line_;
     Kernels kernels_;
     TemplateCache cache_;

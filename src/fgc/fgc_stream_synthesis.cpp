@@ -41,6 +41,12 @@ FgcStreamSynthesis::FgcStreamSynthesis(const FgcOptions& options) : options_(opt
 
 FgcStreamSynthesis::~FgcStreamSynthesis() = default;
 
+const FgcParams* FgcStreamSynthesis::params_in_force(FgcCodec* codec) const {
+    if (!active_) return nullptr;
+    if (codec) *codec = active_->codec;
+    return &active_->params;
+}
+
 void FgcStreamSynthesis::receive_sei(const FgcParams& params, FgcCodec codec) {
     pending_ = params;  // copy-assignment into kept storage: no allocation for a repeated SEI
     has_pending_ = true;

@@ -65,6 +65,8 @@ public:
     FgcFrameResult apply(const FrameView& src, const FrameView& dst, const FgcPictureIds& ids);
 
     const FgcOptions& options() const { return options_; }
+    // The SEI in force for the picture apply() last synthesized (null: none), and its codec.
+    const FgcParams* params_in_force(FgcCodec* codec) const;
     int templates_built() const;
     // Working memory besides the templates (stripe buffers, block states), in bytes.
     std::size_t scratch_bytes() const;

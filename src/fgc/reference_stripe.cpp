@@ -28,8 +28,12 @@ void FgcPictureSynthesis::reference_stripe(const ResolvedFgc& params, int c, con
     const int blocks_x = (w + rb - 1) / rb;
     // rdd5, ffmpeg, tr: only the samples inside the picture are averaged and get grain
     // (HM-2020); vtm: edge-replicated averages over whole blocks (HM/VTM).
-    const bool inside = flavour_ != FgcFlavour::kVtm;
+    const bool inside = (flavour_ != FgcFlavour::kVtm) != deviations_.partial_blocks_toggled;
     const bool ffmpeg = flavour_ == FgcFlavour::kFfmpeg;
+    // FFmpeg's rule: only edges whose right block got grain are deblocked (deblocking.hpp)
+    const bool deblock_after_grain = ffmpeg != deviations_.blank_block_deblocking_toggled;
+    const bool interval_from_luma = deviations_.chroma_interval_from_luma && c > 0;
+    const int luma_sx = c ? chroma_shift_x(src_frame.format) : 0, luma_sy = c ? chroma_shift_y(src_frame.format) : 0;
     const bool line = single_line_ != 0;
     const bool correlate = correlate_[std::size_t(c)];
     // Auto-regressive templates carry one bit more than frequency-filtered ones (as in VFGS).
@@ -44,7 +48,7 @@ void FgcPictureSynthesis::reference_stripe(const ResolvedFgc& params, int c, con
     // ffmpeg: which blocks of the stripe got grain, per block row (its deblocking depends on it)
     const int block_columns = blocks_x * (rb / bs);
     uint8_t* has_grain = scratch.has_grain.data();
-    if (ffmpeg) std::fill(has_grain, has_grain + std::ptrdiff_t(block_columns) * (rb / bs), uint8_t(0));
+    if (deblock_after_grain) std::fill(has_grain, has_grain + std::ptrdiff_t(block_columns) * (rb / bs), uint8_t(0));
     int16_t* rho = scratch.rho.data();
     if (correlate) std::fill(rho, rho + samples, int16_t(0));
 
@@ -78,19 +82,25 @@ void FgcPictureSynthesis::reference_stripe(const ResolvedFgc& params, int c, con
                 }
                 continue;
             }
-            const int avg = ffmpeg   ? block_average_zero_outside<Pixel>(src, x0, y0, bs, bit_depth)
-                            : inside ? block_average_inside<Pixel>(src, x0, y0, bs, bit_depth)
-                                     : block_average_replicated<Pixel>(src, x0, y0, bs, bit_depth);
+            // the averaged plane and block: the component's own, or (verify's deviation) the
+            // co-sited luma block, clamped into the luma plane
+            const PlaneView& avg_plane = interval_from_luma ? src_frame.planes[0] : src;
+            const int ax = interval_from_luma ? std::min(x0 << luma_sx, avg_plane.width - 1) : x0;
+            const int ay = interval_from_luma ? std::min(y0 << luma_sy, avg_plane.height - 1) : y0;
+            const int avg = ffmpeg && inside ? block_average_zero_outside<Pixel>(avg_plane, ax, ay, bs, bit_depth)
+                            : inside         ? block_average_inside<Pixel>(avg_plane, ax, ay, bs, bit_depth)
+                                             : block_average_replicated<Pixel>(avg_plane, ax, ay, bs, bit_depth);
             const int iv = comp.interval_of_intensity[std::size_t(avg)];
             if (iv < 0) continue;  // no interval: this block gets no grain
-            if (ffmpeg) has_grain[std::size_t(yo / bs) * block_columns + std::size_t(x0 / bs)] = 1;
+            if (deblock_after_grain) has_grain[std::size_t(yo / bs) * block_columns + std::size_t(x0 / bs)] = 1;
             emit_rows(0, bs, iv);
         }
     }
     const int rows = std::min(rb, h - by * rb);
-    for (int yo = 0; yo < rows; yo += bs)
+    for (int yo = 0; yo < rows && !deviations_.no_deblocking; yo += bs)
         deblock_stripe_vertical_edges(stripe + std::ptrdiff_t(yo) * stride, stride, std::min(bs, rows - yo), w, bs,
-                                      ffmpeg ? has_grain + std::size_t(yo / bs) * block_columns : nullptr);
+                                      deblock_after_grain ? has_grain + std::size_t(yo / bs) * block_columns
+                                                          : nullptr);
     if (correlate) {
         const bool first_chroma = c == 1;  // Cb over luma; Cr over Cb, at the same resolution
         const PreviousGrain previous{plane_grain_[std::size_t(c - 1)].data(), src_frame.planes[c - 1].width,

@@ -66,7 +66,7 @@ GrainTemplate make_grain_template(int cutoff_h, int cutoff_v, TemplateTransform 
     fill_template_coefficients(cutoff_h, cutoff_v, coeff);
     GrainTemplate t;
     inverse_transform_template(coeff, transform, t);
-    predeblock_template_rows(t, cutoff_v, block_size);
+    if (block_size > 0) predeblock_template_rows(t, cutoff_v, block_size);  // 0: verify's "no deblocking"
     return t;
 }
 

@@ -151,6 +151,18 @@ struct Session::Impl {
                 ids.idr_pic_id = 0;
             }
             FgcFrameResult fr = fgc->apply(src, dst, ids);
+            if (options.report_applied_parameters) {
+                FgcCodec codec = FgcCodec::kHevc;
+                if (const FgcParams* in_force = fgc->params_in_force(&codec)) {
+                    AppliedGrain a;
+                    a.model = AppliedGrain::Model::kFgc;
+                    a.fgc = *in_force;
+                    a.fgc_codec = codec;
+                    a.fgc_ids = ids;
+                    a.fgc_own_sei = sei.has_value();
+                    r.applied = std::move(a);
+                }
+            }
             r.grain_applied = fr.grain_applied;
             r.message = fr.message;
             r.parameters_refused = fr.parameters_refused;
@@ -212,6 +224,13 @@ struct Session::Impl {
         if (!av1_synthesizer)
             av1_synthesizer = std::make_unique<av1::Av1PictureSynthesis>(
                 options.threads, options.reference_kernels ? av1::Kernels::kReference : av1::Kernels::kOptimized);
+        if (options.report_applied_parameters) {
+            AppliedGrain a;
+            a.model = AppliedGrain::Model::kAv1;
+            a.av1 = p;
+            a.matrix_coefficients = matrix_coefficients;
+            r.applied = a;
+        }
         try {
             av1_synthesizer->apply(p, src, dst, matrix_coefficients);
         } catch (const Error& e) {

@@ -1,0 +1,526 @@
+// `filmgrain verify`: checks a decoder's grainy output against the session's re-synthesis and,
+// where they differ, names the implementation mistake that reproduces the decoder's pictures
+// (src/verify). The reference pictures come from a stream (decoded by libav with grain
+// exported and the metadata read as `decode` reads it) or from clean pictures plus the
+// metadata files `apply` reads; the decoder's output is Y4M, raw YUV or a per-frame .md5 list.
+//
+// Alignment: a decoder may drop pictures. A decoded picture that does not match the next
+// reference picture is looked for among the next kLookahead ones: exactly, else by a clearly
+// smaller error (half); the pictures passed over are reported missing. The rest stays aligned.
+//
+// Exit status: 0 every picture bit-exact, 1 mismatching or missing pictures, 2 an error.
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <fstream>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "core/thread_pool.hpp"
+#include "filmgrain/error.hpp"
+#include "filmgrain/session.hpp"
+#include "io/output_file.hpp"
+#include "metadata/fgc_sei.hpp"
+#include "option_parsing.hpp"
+#include "session/parameter_file_feed.hpp"
+
+#ifdef FILMGRAIN_HAVE_VERIFY
+#include "verify/mistake_hypotheses.hpp"
+#include "verify/verification_report.hpp"
+#endif
+#ifdef FILMGRAIN_HAVE_LIBAV
+#include "bitstream/av1_grain_extraction.hpp"
+#include "bitstream/stream_scan.hpp"
+#include "libav/video_decoder.hpp"
+#include "metadata/afgs1.hpp"
+#endif
+
+namespace filmgrain::cli {
+namespace {
+
+struct VerifyOptions {
+    std::string stream;   // coded stream (libav), or empty with --clean
+    std::string decoded;  // the decoder's output: .y4m, raw .yuv or a .md5 list
+    std::string clean, params, sei_codec = "hevc";
+    std::vector<std::string> sei, afgs1;
+    RawVideoOptions raw;  // raw decoded / clean input; default: the reference's size and format
+    std::string flavour = "rdd5", persistence = "reference", coded_size;
+    std::string json, report;
+    int threads = 0;
+    int diagnose = 8;       // mismatching pictures the hypotheses are tried on
+    int list_frames = 20;   // mismatching pictures detailed in the text report
+    bool quiet = false;
+};
+
+constexpr int kExitMismatch = 1, kExitError = 2;
+
+#ifdef FILMGRAIN_HAVE_VERIFY
+
+constexpr std::size_t kLookahead = 8;
+
+struct ReferencePicture {
+    int index = 0;
+    FrameBuffer clean, expected;
+    verify::PictureFacts facts;
+};
+
+// Fills facts from what the session applied (ApplyResult::applied).
+void facts_from_applied(const ApplyResult& r, FgcFlavour flavour, verify::PictureFacts& f) {
+    if (!r.applied) return;
+    const AppliedGrain& a = *r.applied;
+    if (a.model == AppliedGrain::Model::kAv1) {
+        f.model = verify::PictureFacts::Model::kAv1;
+        f.av1 = a.av1;
+        f.matrix_coefficients = a.matrix_coefficients;
+    } else if (a.model == AppliedGrain::Model::kFgc) {
+        f.model = verify::PictureFacts::Model::kFgc;
+        f.fgc.params = a.fgc;
+        f.fgc.codec = a.fgc_codec;
+        f.fgc.ids = a.fgc_ids;
+        f.fgc.flavour = flavour;
+        f.fgc.persisted = !a.fgc_own_sei;
+    }
+}
+
+SessionOptions verify_session_options(const VerifyOptions& o, FgcFlavour flavour) {
+    SessionOptions so;
+    so.flavour = flavour;
+    so.threads = o.threads;
+    so.persistence = o.persistence == "semantic" ? FgcPersistence::kSemantic : FgcPersistence::kReference;
+    so.report_applied_parameters = true;
+    if (!o.coded_size.empty()) {
+        const PictureSize cs = parse_picture_size(o.coded_size, "--coded-size");
+        so.coded_width = cs.width;
+        so.coded_height = cs.height;
+    }
+    return so;
+}
+
+class ReferenceSource {
+public:
+    virtual ~ReferenceSource() = default;
+    virtual bool next(ReferencePicture& pic) = 0;
+    virtual std::string name() const = 0;
+    virtual int fps_num() const { return 25; }
+    virtual int fps_den() const { return 1; }
+};
+
+// Clean pictures plus the metadata files `apply` reads, through the same session feed.
+class FilesSource final : public ReferenceSource {
+public:
+    FilesSource(const VerifyOptions& o, FgcFlavour flavour)
+        : o_(o), flavour_(flavour), reader_(o.clean, o.raw.to_info()), feed_(files(o)),
+          session_(verify_session_options(o, flavour)) {}
+    bool next(ReferencePicture& pic) override {
+        if (!reader_.read(pic.clean)) return false;
+        pic.index = k_;
+        pic.facts = {};
+        const FrameInfo fi = feed_.feed(session_, k_++, reader_.info().fps_num, reader_.info().fps_den);
+        pic.expected = FrameBuffer::uninitialized(pic.clean.width(), pic.clean.height(), pic.clean.format());
+        const ApplyResult r = session_.apply(pic.clean.view(), pic.expected.view(), &fi);
+        facts_from_applied(r, flavour_, pic.facts);
+        return true;
+    }
+    std::string name() const override { return o_.clean; }
+    int fps_num() const override { return reader_.info().fps_num; }
+    int fps_den() const override { return reader_.info().fps_den; }
+
+private:
+    static session::ParameterFiles files(const VerifyOptions& o) {
+        if (int(!o.params.empty()) + int(!o.sei.empty()) + int(!o.afgs1.empty()) != 1)
+            throw Error(ErrorCode::kInvalidArgument, "with --clean, give exactly one of --params, --sei or --afgs1");
+        session::ParameterFiles f;
+        f.params = o.params;
+        f.sei = o.sei;
+        f.afgs1 = o.afgs1;
+        f.sei_codec = parse_fgc_codec(o.sei_codec);
+        return f;
+    }
+    const VerifyOptions& o_;
+    FgcFlavour flavour_;
+    VideoReader reader_;
+    session::ParameterFileFeed feed_;
+    Session session_;
+    int k_ = 0;
+};
+
+#ifdef FILMGRAIN_HAVE_LIBAV
+// A coded stream: libav's pictures with grain exported, the grain as `decode` applies it,
+// and from the elementary stream's scan what libav does not export (POC and idr_pic_id apart,
+// whether a picture brought its own SEI, AV1 show_existing_frame and reference slots, AFGS1).
+class StreamSource final : public ReferenceSource {
+public:
+    StreamSource(const VerifyOptions& o, FgcFlavour flavour)
+        : o_(o), flavour_(flavour), decoder_(o.stream, o.threads), session_(verify_session_options(o, flavour)) {
+        if (flavour == FgcFlavour::kVfgs)
+            throw Error(ErrorCode::kInvalidArgument, "--flavour vfgs: verify checks rdd5, vtm, ffmpeg and tr");
+        decoder_.on_damage([this](const libav::DamagedUnit& u) {
+            if (!o_.quiet) std::fprintf(stderr, "filmgrain: warning: %s\n", libav::describe(u).c_str());
+        });
+        const std::string& codec = decoder_.description().codec_name;
+        if (codec == "h264" || codec == "hevc" || codec == "vvc" || codec == "av1") {
+            try {
+                scan_ = bitstream::scan_stream_file(o.stream, std::nullopt);
+                units_ = bitstream::units_in_output_order(scan_);
+                std::vector<std::string> warnings;
+                afgs1_ = bitstream::afgs1_payloads_in_output_order(scan_, warnings);
+            } catch (const Error&) {
+                units_.clear();  // a container the scanner does not read: libav's metadata only
+            }
+        }
+    }
+    bool next(ReferencePicture& pic) override {
+        libav::DecodedFrame frame;
+        if (!decoder_.next(frame, /*copy_picture=*/true)) return false;
+        pic.index = index_++;
+        pic.facts = {};
+        const bitstream::AccessUnit* unit =
+            std::size_t(frame.index) < units_.size() ? units_[std::size_t(frame.index)] : nullptr;
+        if (!frame.av1 && !frame.fgc && std::size_t(frame.index) < afgs1_.size() && afgs1_[std::size_t(frame.index)]) {
+            Afgs1Picture p;
+            p.width = frame.picture.width();
+            p.height = frame.picture.height();
+            p.format = frame.picture.format().chroma;
+            p.bit_depth = frame.picture.format().bit_depth;
+            if (frame.matrix_coefficients != 2) p.matrix_coefficients = frame.matrix_coefficients;
+            if (const auto sel = select_afgs1_set(*afgs1_[std::size_t(frame.index)], p); sel && sel->params.apply_grain) {
+                frame.av1 = sel->params;
+                frame.matrix_coefficients = sel->matrix_coefficients;
+            }
+        }
+        FrameInfo fi;
+        if (frame.av1) {
+            Av1FilmGrainParams p = *frame.av1;
+            p.update_grain = 1;
+            session_.receive_av1_params(p, 0, frame.matrix_coefficients);
+        } else if (frame.fgc) {
+            session_.receive_fgc_params(*frame.fgc, frame.fgc_codec);
+            fi.ids = FgcPictureIds{int(frame.seed), 0};
+            // the scan's POC and idr_pic_id where they give FFmpeg's seed (RDD 5 pic_offset)
+            if (unit && unit->poc &&
+                uint32_t(*unit->poc) + (uint32_t(unit->idr_pic_id.value_or(0)) << 5) == uint32_t(frame.seed))
+                fi.ids = FgcPictureIds{*unit->poc, unit->idr_pic_id.value_or(0)};
+        }
+        pic.clean = std::move(frame.picture);
+        pic.expected = FrameBuffer::uninitialized(pic.clean.width(), pic.clean.height(), pic.clean.format());
+        if (!frame.av1 && !frame.fgc) {
+            copy_frame(pic.clean.view(), pic.expected.view());
+            return true;
+        }
+        const ApplyResult r = session_.apply(pic.clean.view(), pic.expected.view(), &fi);
+        facts_from_applied(r, flavour_, pic.facts);
+        if (pic.facts.model == verify::PictureFacts::Model::kAv1) {
+            if (unit) {
+                pic.facts.av1_show_existing_frame = unit->av1_show_existing_frame;
+                pic.facts.av1_other_slots = unit->av1_other_slot_grain;
+            }
+            pic.facts.av1_previous = previous_av1_;
+            previous_av1_ = pic.facts.av1;
+        } else if (pic.facts.model == verify::PictureFacts::Model::kFgc && unit) {
+            pic.facts.fgc.persisted = unit->fgc.empty();
+        }
+        return true;
+    }
+    std::string name() const override { return o_.stream; }
+    int fps_num() const override { return decoder_.description().fps_num; }
+    int fps_den() const override { return decoder_.description().fps_den; }
+
+private:
+    const VerifyOptions& o_;
+    FgcFlavour flavour_;
+    libav::VideoDecoder decoder_;
+    Session session_;
+    bitstream::StreamScan scan_;
+    std::vector<const bitstream::AccessUnit*> units_;
+    std::vector<std::optional<Afgs1Payload>> afgs1_;
+    std::optional<Av1FilmGrainParams> previous_av1_;
+    int index_ = 0;
+};
+#endif
+
+// The decoder's pictures: Y4M / raw YUV, or one MD5 per picture (a line's first 32 hex
+// digits; blank lines and '#' comments skipped).
+class DecodedInput {
+public:
+    DecodedInput(const std::string& path, bool md5) : path_(path), md5_(md5) {
+        if (!md5) return;
+        std::ifstream in(path);
+        if (!in) throw Error(ErrorCode::kIo, "cannot read the MD5 list '" + path + "'");
+        std::string line;
+        int number = 0;
+        while (std::getline(in, line)) {
+            number++;
+            const std::size_t start = line.find_first_not_of(" \t\r");
+            if (start == std::string::npos || line[start] == '#') continue;
+            std::string hex = line.substr(start, 32);
+            for (char& c : hex) c = char(std::tolower(static_cast<unsigned char>(c)));
+            if (hex.size() != 32 || hex.find_first_not_of("0123456789abcdef") != std::string::npos)
+                throw Error(ErrorCode::kInvalidArgument, "MD5 list '" + path + "' line " + std::to_string(number) +
+                                                             ": '" + line.substr(0, 60) +
+                                                             "' does not start with an MD5 (32 hexadecimal digits)");
+            hashes_.push_back(hex);
+        }
+        if (hashes_.empty()) throw Error(ErrorCode::kInvalidArgument, "MD5 list '" + path + "' holds no MD5");
+    }
+    bool md5() const { return md5_; }
+    // raw_info: used for raw YUV only (Y4M describes itself).
+    bool next(FrameBuffer& picture, std::string& hash, const VideoInfo& raw_info) {
+        if (md5_) {
+            if (next_hash_ >= hashes_.size()) return false;
+            hash = hashes_[next_hash_++];
+            return true;
+        }
+        if (!reader_) reader_ = std::make_unique<VideoReader>(path_, raw_info);
+        return reader_->read(picture);
+    }
+
+private:
+    std::string path_;
+    bool md5_;
+    std::vector<std::string> hashes_;
+    std::size_t next_hash_ = 0;
+    std::unique_ptr<VideoReader> reader_;
+};
+
+bool is_md5_list(const std::string& path) {
+    return path.size() > 4 && path.compare(path.size() - 4, 4, ".md5") == 0;
+}
+
+int luma_block_of(const ReferencePicture& pic) {
+    if (pic.facts.model == verify::PictureFacts::Model::kFgc) {
+        const int bs = verify::fgc_reference_block_size(pic.facts.fgc, pic.clean.width(), pic.clean.height());
+        return bs == 32 ? 32 : 16;  // the randomization blocks (TR 23002-9 7.3.2): 16x16, 32x32 at 32
+    }
+    return 32;  // AV1 7.18.3.5's blocks
+}
+
+void check_decoded_shape(const FrameBuffer& decoded, const FrameBuffer& expected, int index) {
+    if (decoded.width() != expected.width() || decoded.height() != expected.height() ||
+        decoded.format().chroma != expected.format().chroma || decoded.format().bit_depth != expected.format().bit_depth)
+        throw Error(ErrorCode::kInvalidArgument,
+                    "decoded picture " + std::to_string(index) + " is " + std::to_string(decoded.width()) + "x" +
+                        std::to_string(decoded.height()) + " " + pix_fmt_name(decoded.format()) +
+                        ", the reference's " + std::to_string(expected.width()) + "x" +
+                        std::to_string(expected.height()) + " " + pix_fmt_name(expected.format()) +
+                        " (give the decoder's output at the stream's size and format; raw YUV: --size, --pix-fmt)");
+}
+
+int run_verify(const VerifyOptions& o) {
+    const FgcFlavour flavour = parse_flavour(o.flavour);
+    if (o.persistence != "reference" && o.persistence != "semantic")
+        throw Error(ErrorCode::kInvalidArgument, "--persistence '" + o.persistence + "' is not known (allowed reference, semantic)");
+    if (o.stream.empty() == o.clean.empty())
+        throw Error(ErrorCode::kInvalidArgument, "give either a STREAM or --clean CLEAN with its metadata");
+    if (!o.stream.empty() && (!o.params.empty() || !o.sei.empty() || !o.afgs1.empty()))
+        throw Error(ErrorCode::kInvalidArgument, "--params, --sei and --afgs1 go with --clean; a STREAM carries its metadata");
+    std::unique_ptr<ReferenceSource> source;
+    if (!o.clean.empty()) {
+        source = std::make_unique<FilesSource>(o, flavour);
+    } else {
+#ifdef FILMGRAIN_HAVE_LIBAV
+        source = std::make_unique<StreamSource>(o, flavour);
+#else
+        throw Error(ErrorCode::kUnsupported, "this build of filmgrain has no libav*: verify a STREAM needs it; use --clean");
+#endif
+    }
+    DecodedInput decoded_input(o.decoded, is_md5_list(o.decoded));
+    std::unique_ptr<verify::HeatMapWriter> heat_maps;
+    if (!o.report.empty()) heat_maps = std::make_unique<verify::HeatMapWriter>(o.report + ".frames");
+
+    verify::VerificationResult result;
+    result.source_name = source->name();
+    result.decoded_name = o.decoded;
+    std::vector<std::vector<std::string>> contradictions;
+    std::deque<ReferencePicture> ahead;
+    auto fill = [&](std::size_t n) {
+        while (ahead.size() < n) {
+            ReferencePicture pic;
+            if (!source->next(pic)) return;
+            ahead.push_back(std::move(pic));
+        }
+    };
+    auto record_missing = [&](const ReferencePicture& pic) {
+        verify::FrameVerification f;
+        f.index = pic.index;
+        f.missing = true;
+        f.grain_expected = pic.facts.grain_expected();
+        result.frames.push_back(std::move(f));
+        contradictions.emplace_back();
+    };
+    int diagnosed = 0, decoded_count = 0;
+    FrameBuffer decoded;
+    std::string decoded_md5;
+    for (;;) {
+        fill(1);
+        VideoInfo raw = o.raw.to_info();
+        if (!ahead.empty() && o.raw.size.empty()) {
+            raw.width = ahead.front().clean.width();
+            raw.height = ahead.front().clean.height();
+            raw.format = ahead.front().clean.format();
+        }
+        if (!decoded_input.next(decoded, decoded_md5, raw)) break;
+        const int decoded_index = decoded_count++;
+        if (ahead.empty()) {
+            result.extra_decoded++;
+            continue;
+        }
+        if (result.frames.empty() && result.width == 0) {
+            const ReferencePicture& first = ahead.front();
+            result.width = first.clean.width();
+            result.height = first.clean.height();
+            result.pix_fmt = pix_fmt_name(first.clean.format());
+            result.luma_block = luma_block_of(first);
+            result.model = first.facts.model == verify::PictureFacts::Model::kAv1   ? "av1"
+                           : first.facts.model == verify::PictureFacts::Model::kFgc ? "fgc"
+                                                                                    : "none";
+            result.reference = result.model == "fgc" ? std::string("fgc ") + fgc_flavour_name(flavour)
+                                                     : result.model == "av1" ? "av1 (AV1 7.18.3; AFGS1 sets as AV1)" : "no grain";
+        }
+        if (!decoded_input.md5()) check_decoded_shape(decoded, ahead.front().expected, decoded_index);
+        auto matches = [&](ReferencePicture& pic) {
+            return decoded_input.md5() ? verify::picture_md5(pic.expected.view()) == decoded_md5
+                                       : verify::picture_distance(pic.expected.view(), decoded.view()).exact();
+        };
+        // a dropped picture: the decoded one is a later reference picture
+        std::size_t skip = 0;
+        if (!matches(ahead.front())) {
+            fill(kLookahead + 1);
+            for (std::size_t k = 1; k < ahead.size() && !skip; k++)
+                if (matches(ahead[k])) skip = k;
+            if (!skip && !decoded_input.md5()) {
+                const double own = verify::picture_distance(ahead.front().expected.view(), decoded.view()).squared_error;
+                double best = own;
+                for (std::size_t k = 1; k < ahead.size(); k++) {
+                    const double e = verify::picture_distance(ahead[k].expected.view(), decoded.view()).squared_error;
+                    if (e < 0.5 * best && e < 0.5 * own) best = e, skip = k;
+                }
+            }
+        }
+        for (std::size_t k = 0; k < skip; k++) {
+            record_missing(ahead.front());
+            ahead.pop_front();
+        }
+        ReferencePicture pic = std::move(ahead.front());
+        ahead.pop_front();
+        verify::FrameVerification f;
+        f.index = pic.index;
+        f.decoded_index = decoded_index;
+        f.grain_expected = pic.facts.grain_expected();
+        if (decoded_input.md5()) {
+            f.expected_md5 = verify::picture_md5(pic.expected.view());
+            f.decoded_md5 = decoded_md5;
+            f.exact = f.expected_md5 == decoded_md5;
+        } else {
+            f.comparison = verify::compare_pictures(pic.expected.view(), decoded.view(), result.luma_block);
+            f.exact = f.comparison->exact();
+        }
+        if (f.exact) {
+            contradictions.push_back(verify::certain_hypotheses(pic.facts, pic.clean.view()));
+        } else {
+            contradictions.emplace_back();
+            if (diagnosed < o.diagnose) {
+                diagnosed++;
+                const FrameView d = decoded.view();
+                f.hypotheses = verify::judge_hypotheses(pic.facts, pic.clean.view(), pic.expected.view(),
+                                                        decoded_input.md5() ? nullptr : &d, decoded_md5, o.threads);
+            }
+            if (heat_maps && f.comparison && !f.comparison->planes.empty())
+                f.heat_map = heat_maps->write(pic.index, decoded.view(), f.comparison->planes[0]);
+        }
+        result.frames.push_back(std::move(f));
+    }
+    if (decoded_count == 0) throw Error(ErrorCode::kIo, "'" + o.decoded + "' holds no decoded picture");
+    // the decoder output fewer pictures than the stream has
+    for (;;) {
+        fill(1);
+        if (ahead.empty()) break;
+        record_missing(ahead.front());
+        ahead.pop_front();
+    }
+    result.diagnosis = verify::diagnose_stream(result.frames, contradictions);
+    if (heat_maps) {
+        // the HTML names its heat maps relative to itself
+        const std::string dir = heat_maps->directory();
+        const std::string rel = dir.substr(dir.find_last_of('/') + 1);
+        for (verify::FrameVerification& f : result.frames)
+            if (!f.heat_map.empty()) f.heat_map = rel + "/" + f.heat_map;
+        verify::write_verification_html(o.report, result);
+    }
+    const bool json_stdout = o.json == "-";
+    if (!o.json.empty()) {
+        const std::string text = verify::verification_json(result) + "\n";
+        if (json_stdout) {
+            std::fwrite(text.data(), 1, text.size(), stdout);
+        } else {
+            OutputFile out(o.json);
+            std::fwrite(text.data(), 1, text.size(), out.stream());
+            out.commit();
+        }
+    }
+    std::FILE* text_out = json_stdout ? stderr : stdout;
+    if (!o.quiet) verify::print_verification_text(text_out, result, o.list_frames);
+    std::fprintf(text_out, "%s\n", verify::verification_summary_line(result).c_str());
+    return result.all_exact() ? 0 : kExitMismatch;
+}
+
+#else
+
+int run_verify(const VerifyOptions&) {
+    throw Error(ErrorCode::kUnsupported, "this build of filmgrain has no verification (libpng-dev missing at build time)");
+}
+
+#endif
+
+void add_verify_options(CLI::App* sub, VerifyOptions& o) {
+    sub->add_option("stream", o.stream,
+                    "the coded stream the decoder decoded (AV1, H.264, H.265...; read by libav with grain exported)");
+    sub->add_option("--decoded,-d", o.decoded,
+                    "the decoder's grainy output: .y4m, raw .yuv (--size/--pix-fmt, default the stream's), or a .md5 "
+                    "list (one MD5 per picture)")
+        ->required();
+    sub->add_option("--clean", o.clean, "clean pictures (.y4m or raw .yuv) instead of a stream, with --params/--sei/--afgs1");
+    sub->add_option("--params,-p", o.params, "with --clean: a parameter file (JSON, libaom grain table, per-frame list)");
+    sub->add_option("--sei", o.sei, "with --clean: FGC SEI payload file(s), one for all pictures, one per picture or a %d pattern");
+    sub->add_option("--afgs1", o.afgs1, "with --clean: AFGS1 T.35 payload file(s), as --sei");
+    sub->add_option("--sei-codec", o.sei_codec, "SEI syntax of --sei files: avc, hevc or vvc")->capture_default_str();
+    o.raw.add_to(sub);
+    sub->add_option("--flavour", o.flavour, "the FGC reference the decoder should match: rdd5, vtm, ffmpeg or tr")
+        ->capture_default_str();
+    sub->add_option("--persistence", o.persistence, "FGC persistence of the reference: reference or semantic")
+        ->capture_default_str();
+    sub->add_option("--coded-size", o.coded_size, "vtm: the SPS coded luma size WxH (HM's block size rule)");
+    sub->add_option("--json", o.json, "write the full result as JSON to this file (- for stdout; the text report then goes to stderr)");
+    sub->add_option("--report", o.report,
+                    "write an HTML report with a heat map of differing blocks per mismatching picture (PNG files in "
+                    "REPORT.frames/)");
+    sub->add_option("--diagnose", o.diagnose, "mismatching pictures the known mistakes are re-synthesized on")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1 << 20));
+    sub->add_option("--list-frames", o.list_frames, "mismatching pictures detailed in the text report")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1 << 20));
+    sub->add_option("--threads", o.threads, "threads of the decoder and of the synthesis (0: all cores)")
+        ->check(CLI::Range(0, filmgrain::kMaxThreads));
+    sub->add_flag("--quiet,-q", o.quiet, "only the summary line (and --json / --report)");
+}
+
+}  // namespace
+
+void register_verify(CLI::App& app) {
+    register_subcommand(app, "verify",
+                        "check a decoder's grainy output against the reference re-synthesis and name the mistake that "
+                        "explains a mismatch (exit 0 bit-exact, 1 mismatches, 2 error)",
+                        add_verify_options, [](const VerifyOptions& o) {
+                            try {
+                                return run_verify(o);
+                            } catch (const Error& e) {
+                                std::fprintf(stderr, "filmgrain: error: %s\n", e.what());
+                                return kExitError;
+                            } catch (const std::bad_alloc&) {
+                                std::fprintf(stderr, "filmgrain: error: out of memory\n");
+                                return kExitError;
+                            }
+                        });
+}
+
+}  // namespace filmgrain::cli
