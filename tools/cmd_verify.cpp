@@ -9,6 +9,7 @@
 // smaller error (half); the pictures passed over are reported missing. The rest stays aligned.
 //
 // Exit status: 0 every picture bit-exact, 1 mismatching or missing pictures, 2 an error.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -50,6 +51,8 @@ struct VerifyOptions {
     int diagnose = 8;       // mismatching pictures the hypotheses are tried on
     int list_frames = 20;   // mismatching pictures detailed in the text report
     bool quiet = false;
+    // --simulate ID -o OUT: what a decoder making mistake ID outputs, instead of verifying
+    std::string simulate, output;
 };
 
 constexpr int kExitMismatch = 1, kExitError = 2;
@@ -305,6 +308,57 @@ void check_decoded_shape(const FrameBuffer& decoded, const FrameBuffer& expected
                         " (give the decoder's output at the stream's size and format; raw YUV: --size, --pix-fmt)");
 }
 
+// The reference output with one mistake made wherever it can change a picture: a "broken
+// decoder" to see what the mistake looks like, and what the tests verify.
+int run_simulate(const VerifyOptions& o, ReferenceSource& source) {
+    if (o.output.empty()) throw Error(ErrorCode::kInvalidArgument, "--simulate needs --output FILE");
+    const std::vector<std::string> ids = verify::hypothesis_ids();
+    if (std::find(ids.begin(), ids.end(), o.simulate) == ids.end()) {
+        std::string allowed;
+        for (const std::string& id : ids) allowed += (allowed.empty() ? "" : ", ") + id;
+        throw Error(ErrorCode::kInvalidArgument, "--simulate '" + o.simulate + "' is not a known mistake (allowed " + allowed + ")");
+    }
+    std::unique_ptr<VideoWriter> writer;
+    FrameBuffer out;
+    ReferencePicture pic;
+    int pictures = 0, changed = 0;
+    while (source.next(pic)) {
+        if (!writer) {
+            VideoInfo info;
+            info.width = pic.clean.width();
+            info.height = pic.clean.height();
+            info.format = pic.clean.format();
+            info.fps_num = source.fps_num();
+            info.fps_den = source.fps_den();
+            writer = std::make_unique<VideoWriter>(o.output, info, o.output == "-" || has_y4m_extension(o.output));
+        }
+        out = FrameBuffer::uninitialized(pic.clean.width(), pic.clean.height(), pic.clean.format());
+        bool made = false;
+        for (const verify::Hypothesis& h : verify::picture_hypotheses(pic.facts, pic.clean.view(), o.threads))
+            if (h.id == o.simulate) {
+                try {
+                    h.synthesize(pic.clean.view(), pic.expected.view(), out.view());
+                    made = true;
+                } catch (const Error& e) {
+                    if (!o.quiet)
+                        std::fprintf(stderr, "filmgrain: picture %d: %s cannot be made: %s\n", pic.index,
+                                     o.simulate.c_str(), e.what());
+                }
+                break;
+            }
+        if (!made) copy_frame(pic.expected.view(), out.view());
+        changed += made && !verify::picture_distance(out.view(), pic.expected.view()).exact();
+        writer->write(out);
+        pictures++;
+    }
+    if (!writer) throw Error(ErrorCode::kIo, "'" + source.name() + "' holds no picture");
+    writer->commit();
+    if (!o.quiet)
+        std::fprintf(stderr, "filmgrain: %d picture(s) written to %s, %d changed by %s\n", pictures, o.output.c_str(),
+                     changed, o.simulate.c_str());
+    return 0;
+}
+
 int run_verify(const VerifyOptions& o) {
     const FgcFlavour flavour = parse_flavour(o.flavour);
     if (o.persistence != "reference" && o.persistence != "semantic")
@@ -323,6 +377,8 @@ int run_verify(const VerifyOptions& o) {
         throw Error(ErrorCode::kUnsupported, "this build of filmgrain has no libav*: verify a STREAM needs it; use --clean");
 #endif
     }
+    if (!o.simulate.empty()) return run_simulate(o, *source);
+    if (o.decoded.empty()) throw Error(ErrorCode::kInvalidArgument, "--decoded FILE is needed (the decoder's output)");
     DecodedInput decoded_input(o.decoded, is_md5_list(o.decoded));
     std::unique_ptr<verify::HeatMapWriter> heat_maps;
     if (!o.report.empty()) heat_maps = std::make_unique<verify::HeatMapWriter>(o.report + ".frames");
@@ -476,8 +532,7 @@ void add_verify_options(CLI::App* sub, VerifyOptions& o) {
                     "the coded stream the decoder decoded (AV1, H.264, H.265...; read by libav with grain exported)");
     sub->add_option("--decoded,-d", o.decoded,
                     "the decoder's grainy output: .y4m, raw .yuv (--size/--pix-fmt, default the stream's), or a .md5 "
-                    "list (one MD5 per picture)")
-        ->required();
+                    "list (one MD5 per picture)");
     sub->add_option("--clean", o.clean, "clean pictures (.y4m or raw .yuv) instead of a stream, with --params/--sei/--afgs1");
     sub->add_option("--params,-p", o.params, "with --clean: a parameter file (JSON, libaom grain table, per-frame list)");
     sub->add_option("--sei", o.sei, "with --clean: FGC SEI payload file(s), one for all pictures, one per picture or a %d pattern");
@@ -502,6 +557,10 @@ void add_verify_options(CLI::App* sub, VerifyOptions& o) {
     sub->add_option("--threads", o.threads, "threads of the decoder and of the synthesis (0: all cores)")
         ->check(CLI::Range(0, filmgrain::kMaxThreads));
     sub->add_flag("--quiet,-q", o.quiet, "only the summary line (and --json / --report)");
+    sub->add_option("--simulate", o.simulate,
+                    "instead of verifying, write what a decoder making this mistake outputs (an id of the diagnosis, "
+                    "e.g. av1.no_overlap, fgc.no_deblocking, grain_not_applied) to --output");
+    sub->add_option("--output,-o", o.output, "with --simulate: the output (.y4m, or raw .yuv)");
 }
 
 }  // namespace

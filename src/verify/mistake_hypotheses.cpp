@@ -5,6 +5,7 @@
 
 #include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
+#include "filmgrain/error.hpp"
 #include "verify/av1_mistakes.hpp"
 
 namespace filmgrain::verify {
@@ -25,6 +26,17 @@ void reference_av1(const Av1FilmGrainParams& p, int mc, const FrameView& src, co
 }
 
 }  // namespace
+
+std::vector<std::string> hypothesis_ids() {
+    std::vector<std::string> ids;
+    for (const Av1MistakeInfo& m : av1_picture_mistakes()) ids.emplace_back(m.id);
+    ids.emplace_back(kShowExistingReuse);
+    ids.emplace_back(kWrongSlot);
+    for (const FgcMistakeInfo& m : fgc_picture_mistakes()) ids.emplace_back(m.id);
+    ids.emplace_back(kNotApplied);
+    ids.emplace_back(kAppliedTwice);
+    return ids;
+}
 
 bool PictureFacts::grain_expected() const {
     switch (model) {
@@ -107,7 +119,11 @@ std::vector<HypothesisOutcome> judge_hypotheses(const PictureFacts& facts, const
     FrameBuffer out = FrameBuffer::uninitialized(clean.width, clean.height, PixelFormat{clean.format, clean.bit_depth});
     std::vector<HypothesisOutcome> outcomes;
     for (const Hypothesis& h : picture_hypotheses(facts, clean, threads)) {
-        h.synthesize(clean, expected, out.view());
+        try {
+            h.synthesize(clean, expected, out.view());
+        } catch (const Error&) {
+            continue;  // a reading the picture does not allow (vtm's size limits...): no decoder makes it
+        }
         HypothesisOutcome o;
         o.id = h.id;
         o.description = h.description;

@@ -40,6 +40,9 @@ struct Hypothesis {
     std::function<void(const FrameView& clean, const FrameView& expected, const FrameView& dst)> synthesize;
 };
 
+// The id of every hypothesis there is (either model's, the stream-state ones, the generic two).
+std::vector<std::string> hypothesis_ids();
+
 // Every hypothesis that can change this picture, in a fixed order.
 std::vector<Hypothesis> picture_hypotheses(const PictureFacts& facts, const FrameView& clean, int threads);
 
@@ -48,7 +51,8 @@ std::vector<Hypothesis> picture_hypotheses(const PictureFacts& facts, const Fram
 // bit-exact picture where one of them applies contradicts it. Empty when none applies.
 std::vector<std::string> certain_hypotheses(const PictureFacts& facts, const FrameView& clean);
 
-// Judges every hypothesis on one mismatching picture, best first (exact, then fewest
+// Judges every hypothesis on one mismatching picture, best first (one whose synthesis refuses
+// the picture, e.g. vtm outside HM's size limits, is left out) (exact, then fewest
 // differing samples, then smallest squared error). With `decoded_md5` set and `decoded`
 // null, only exactness is known (MD5 lists): differing is -1 for the others.
 std::vector<HypothesisOutcome> judge_hypotheses(const PictureFacts& facts, const FrameView& clean,

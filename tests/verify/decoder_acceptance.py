@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""`filmgrain verify` against real decoders and real streams (CTest: verify.decoder_acceptance).
+
+1. dav1d's own output of aomenc --film-grain-test 1..16 streams, 8-bit (the conformance
+   streams) and 10-bit (encoded here), is reported bit-exact (exit 0), as Y4M and as a
+   per-frame .md5 list; `filmgrain decode` output of FGC (H.265) and AFGS1 streams too.
+2. For every mistake verify knows, a "broken decoder" output is made from a real stream
+   (`verify --simulate ID`: the reference with exactly that mistake injected) and verify
+   must name that mistake first. Where it names another, both mistakes must give the
+   identical pictures on that stream (checked byte for byte, and printed).
+3. A decoder that dropped pictures: the missing ones are named and the rest stays aligned.
+4. dav1d --filmgrain 0 (grain not applied) is diagnosed as such.
+
+usage: decoder_acceptance.py FILMGRAIN SOURCE_DIR WORK_DIR FILMGRAIN_FGC_SEI_STREAM
+"""
+import hashlib
+import json
+import lzma
+import os
+import shutil
+import subprocess
+import sys
+
+TOOL, SRC, WORK, SEI_TOOL = (os.path.abspath(a) for a in sys.argv[1:5])
+CONF = os.path.join(SRC, "conformance")
+failures = []
+
+
+def run(args, check=None):
+    p = subprocess.run(args, capture_output=True, text=True)
+    if check is not None and p.returncode != check:
+        raise SystemExit(f"FAIL: {' '.join(args)} exited {p.returncode} (expected {check})\n{p.stdout[-3000:]}{p.stderr[-3000:]}")
+    return p
+
+
+def expect(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def y4m_frames(path):
+    """(header, [frame bytes]) of a Y4M file."""
+    data = open(path, "rb").read()
+    head_end = data.index(b"\n")
+    header = data[:head_end].decode()
+    w = int(next(t[1:] for t in header.split() if t.startswith("W")))
+    h = int(next(t[1:] for t in header.split() if t.startswith("H")))
+    c = next((t[1:] for t in header.split() if t.startswith("C")), "420jpeg")
+    bps = 2 if "p" in c and any(d in c for d in ("p10", "p12", "p16")) else 1
+    cw, ch = ((w + 1) // 2, (h + 1) // 2) if c.startswith("420") else ((w + 1) // 2, h) if c.startswith("422") else (w, h)
+    size = (w * h + (2 * cw * ch if not c.startswith("mono") else 0)) * bps
+    frames, pos = [], head_end + 1
+    while pos < len(data):
+        line_end = data.index(b"\n", pos)
+        frames.append(data[line_end + 1:line_end + 1 + size])
+        pos = line_end + 1 + size
+    return header, frames
+
+
+def write_y4m(path, header, frames):
+    with open(path, "wb") as f:
+        f.write(header.encode() + b"\n")
+        for fr in frames:
+            f.write(b"FRAME\n" + fr)
+
+
+def verify_json(stream, decoded, *extra):
+    out = os.path.join(WORK, "result.json")
+    p = run([TOOL, "verify", stream, "--decoded", decoded, "--json", out, "-q", *extra])
+    if p.returncode == 2:
+        raise SystemExit(f"FAIL: verify {stream} {decoded}: {p.stderr}")
+    return p.returncode, json.load(open(out))
+
+
+os.makedirs(WORK, exist_ok=True)
+os.chdir(WORK)
+
+# ---- 1. real decoders' correct output is bit-exact --------------------------------------
+av1_8bit = [os.path.join(CONF, f"av1_tv{n:02d}_176x144_420p8", "stream.ivf") for n in range(1, 17)]
+raw10 = os.path.join(WORK, "input10.yuv")
+with open(raw10, "wb") as f:
+    f.write(lzma.open(os.path.join(CONF, "av1_tv01_352x288_420p10", "input.yuv.xz")).read())
+av1_10bit = []
+for n in range(1, 17):
+    out = os.path.join(WORK, f"tv{n:02d}_10bit.ivf")
+    run(["aomenc", "--ivf", "-w", "352", "-h", "288", "--fps=25/1", "--i420", "--profile=0", "--bit-depth=10",
+         "--input-bit-depth=10", "--lossless=1", "--passes=1", "--cpu-used=8", "--limit=3",
+         f"--film-grain-test={n}", "-o", out, raw10, "-q"], check=0)
+    av1_10bit.append(out)
+for stream in av1_8bit + av1_10bit:
+    run(["dav1d", "-q", "-i", stream, "-o", "dav1d.y4m"], check=0)
+    rc, r = verify_json(stream, "dav1d.y4m")
+    expect(rc == 0 and r["summary"]["all_exact"], f"dav1d output of {stream} bit-exact (rc {rc})")
+    header, frames = y4m_frames("dav1d.y4m")
+    with open("dav1d.md5", "w") as f:
+        f.write("# per-frame MD5s of dav1d's output\n")
+        for i, fr in enumerate(frames):
+            f.write(f"{hashlib.md5(fr).hexdigest()}  frame{i}\n")
+    rc, r = verify_json(stream, "dav1d.md5")
+    expect(rc == 0 and r["summary"]["exact"] == len(frames), f"dav1d MD5 list of {stream} bit-exact (rc {rc})")
+print(f"dav1d: {len(av1_8bit)} 8-bit and {len(av1_10bit)} 10-bit film-grain-test streams checked")
+
+fgc_streams = [os.path.join(CONF, d, "stream.hevc") for d in sorted(os.listdir(CONF))
+               if d.startswith("ffmpeg71-") and os.path.exists(os.path.join(CONF, d, "stream.hevc"))]
+# the one AFGS1 case with a coded stream (H.265, B-frames; the others are payload files)
+afgs1_streams = [os.path.join(CONF, "afgs1-352x288-420p8-bframes", "stream.hevc")]
+for stream in fgc_streams + afgs1_streams:
+    run([TOOL, "decode", stream, "-o", "decoded.y4m", "-q"], check=0)
+    rc, r = verify_json(stream, "decoded.y4m")
+    expect(rc == 0, f"filmgrain decode output of {stream} bit-exact (rc {rc})")
+
+# ---- 2. every known mistake, injected into a real stream, is named first -----------------
+# an AV1 stream with hidden frames shown later (show_existing_frame): aomenc's alt-ref
+raw8 = os.path.join(WORK, "input8.yuv")
+# moving content: repeated pictures could make a mistaken picture equal a later reference one
+run(["ffmpeg", "-v", "error", "-y", "-f", "lavfi", "-i", "testsrc2=size=176x144:rate=25", "-frames:v", "12",
+     "-pix_fmt", "yuv420p", "-f", "rawvideo", raw8], check=0)
+altref = os.path.join(WORK, "altref.ivf")
+run(["aomenc", "--ivf", "-w", "176", "-h", "144", "--fps=25/1", "--i420", "--passes=1", "--cpu-used=8",
+     "--end-usage=q", "--cq-level=20", "--lag-in-frames=8", "--auto-alt-ref=1", "--film-grain-test=2",
+     "-o", altref, raw8, "-q"], check=0)
+# H.264 with an FGC SEI every third access unit (persistence ends with its picture:
+# repetition_period 0) and IDR pictures with idr_pic_id 1, 2... (x264 counts them)
+fgc_json = json.load(open(os.path.join(CONF, "ffmpeg71-352x288-420p8-gaps", "fgc.json")))
+fgc_json["film_grain_characteristics_repetition_period"] = 0
+json.dump(fgc_json, open("h264_fgc.json", "w"))
+run(["x264", "--input-res", "176x144", "--fps", "25", "--keyint", "3", "--min-keyint", "1", "--bframes", "0",
+     "--qp", "20", "-o", "plain.264", raw8, "--quiet"], check=0)
+h264 = os.path.join(WORK, "fgc_every3.264")
+run([SEI_TOOL, "plain.264", h264, "h264_fgc.json", "h264", "3"], check=0)
+ids = json.loads(json.dumps(run([TOOL, "verify", av1_8bit[0], "--simulate", "?", "-o", "x.y4m"]).stderr
+                            .split("(allowed ", 1)[1].rsplit(")", 1)[0].split(", ")))
+# (stream, extra arguments: the reference flavour the decoder is checked against)
+candidates = {"av1": [(s, []) for s in av1_8bit + [os.path.join(CONF, "av1_tv01_352x288_420p10", "stream.ivf"), altref]],
+              "fgc": [(s, []) for s in fgc_streams + [h264]] + [(s, ["--flavour", "vtm"]) for s in fgc_streams if "1280x720" in s],
+              "any": [(s, []) for s in av1_8bit[:1] + fgc_streams[:1] + afgs1_streams]}
+exercised, not_exercised = [], []
+for mistake in ids:
+    family = "av1" if mistake.startswith("av1.") else "fgc" if mistake.startswith("fgc.") else "any"
+    done = False
+    for stream, extra in candidates[family]:
+        p = run([TOOL, "verify", stream, "--simulate", mistake, "-o", "broken.y4m", *extra], check=0)
+        changed = int(p.stderr.split(", ")[-1].split(" changed")[0])
+        if changed == 0:
+            continue
+        rc, r = verify_json(stream, "broken.y4m", *extra)
+        named = r["diagnosis"][0]["id"] if r["diagnosis"] else None
+        expect(rc == 1, f"{mistake} on {stream}: exit 1 (got {rc})")
+        expect(r["diagnosis"] and r["diagnosis"][0]["frames_exact"] == changed,
+               f"{mistake} on {stream}: the first diagnosis reproduces all {changed} changed pictures")
+        if named != mistake:
+            # allowed only when the named mistake gives the identical pictures on this stream
+            run([TOOL, "verify", stream, "--simulate", named, "-o", "other.y4m", *extra], check=0)
+            same = open("broken.y4m", "rb").read() == open("other.y4m", "rb").read()
+            expect(same, f"{mistake} on {stream}: named {named}, whose pictures differ")
+            if same:
+                print(f"note: {mistake} and {named} give identical pictures on {os.path.relpath(stream, SRC)}; "
+                      f"verify names {named} first")
+        exercised.append((mistake, (os.path.relpath(stream, SRC) if stream.startswith(SRC) else os.path.basename(stream))
+                          + " " + " ".join(extra), changed))
+        done = True
+        break
+    if not done:
+        not_exercised.append(mistake)
+for m, s, c in exercised:
+    print(f"named: {m:45s} {s} ({c} picture(s))")
+print("no candidate stream exercises:", ", ".join(not_exercised) or "none")
+# stream-state mistakes the candidate streams cannot carry are tested on synthetic pictures
+# (tests/verify/mistake_hypotheses_test.cpp); every picture-level mistake must be exercised here
+allowed_missing = {"av1.update_grain_wrong_slot", "fgc.idr_term_in_seed", "fgc.semantic_persistence",
+                   "av1.show_existing_frame_reuses_previous", "fgc.flavour_rdd5", "fgc.block_size_8",
+                   "av1.ar_coeff_shift_minus_1", "av1.ar_coeff_shift_plus_1"}
+for m in not_exercised:
+    expect(m in allowed_missing, f"{m}: no real stream exercised it")
+
+# ---- 3. a decoder that dropped pictures ----------------------------------------------------
+stream = afgs1_streams[0]
+run([TOOL, "decode", stream, "-o", "full.y4m", "-q"], check=0)
+header, frames = y4m_frames("full.y4m")
+write_y4m("dropped.y4m", header, [f for i, f in enumerate(frames) if i not in (2, 5)])
+rc, r = verify_json(stream, "dropped.y4m")
+missing = [f["index"] for f in r["frames"] if f["missing"]]
+expect(rc == 1 and missing == [2, 5], f"dropped pictures 2 and 5 reported missing (got {missing}, rc {rc})")
+expect(r["summary"]["exact"] == len(frames) - 2, f"the other {len(frames) - 2} pictures stay aligned and bit-exact "
+                                                  f"(got {r['summary']['exact']})")
+write_y4m("short.y4m", header, frames[:-3])
+rc, r = verify_json(stream, "short.y4m")
+missing = [f["index"] for f in r["frames"] if f["missing"]]
+expect(missing == list(range(len(frames) - 3, len(frames))), f"the last 3 pictures missing at the end (got {missing})")
+
+# ---- 4. dav1d without grain ------------------------------------------------------------------
+run(["dav1d", "-q", "--filmgrain", "0", "-i", av1_8bit[0], "-o", "nograin.y4m"], check=0)
+rc, r = verify_json(av1_8bit[0], "nograin.y4m")
+expect(rc == 1 and r["diagnosis"][0]["id"] == "grain_not_applied", "dav1d --filmgrain 0 diagnosed as grain not applied")
+
+if failures:
+    print(f"{len(failures)} failure(s)")
+    sys.exit(1)
+print("all decoder acceptance checks passed")
