@@ -30,11 +30,9 @@
 #include <optional>
 #include <vector>
 
-#include "bitstream/av1_grain_extraction.hpp"
-#include "bitstream/stream_scan.hpp"
+#include "decoded_grain.hpp"
 #include "filmgrain/session.hpp"
 #include "libav/video_decoder.hpp"
-#include "metadata/afgs1.hpp"
 #endif
 
 namespace filmgrain::cli {
@@ -99,25 +97,6 @@ private:
     Clock::time_point start_, last_;
 };
 
-// AFGS1 in H.264 / H.265 / H.266 SEI and in AV1 metadata OBUs: FFmpeg 5.1's decoders neither
-// apply nor export it, so the elementary stream is scanned for the payloads
-// (bitstream/av1_grain_extraction.hpp). An AV1 frame's own film grain, which FFmpeg exports,
-// takes precedence.
-// Containers (MP4, Matroska...) the scanner does not read are left to libav: empty.
-std::vector<std::optional<Afgs1Payload>> afgs1_in_output_order(const std::string& path,
-                                                                const std::function<void(const std::string&)>& warn) {
-    bitstream::StreamScan scan;
-    try {
-        scan = bitstream::scan_stream_file(path, std::nullopt);
-    } catch (const Error&) {
-        return {};
-    }
-    std::vector<std::string> warnings;
-    std::vector<std::optional<Afgs1Payload>> out = bitstream::afgs1_payloads_in_output_order(scan, warnings);
-    for (const std::string& w : warnings) warn(w);
-    return out;
-}
-
 // The visible picture of an uncropped decoder picture (libav::DecodedFrame crop fields).
 FrameView conformance_window(const FrameView& coded, const libav::DecodedFrame& f) {
     if (f.crop_left == 0 && f.crop_top == 0 && f.crop_right == 0 && f.crop_bottom == 0) return coded;
@@ -172,9 +151,7 @@ int run_decode(const DecodeOptions& o) {
     // damage is reported even with -q: it is data lost, not progress
     decoder.on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
     // only elementary streams the scanner reads can carry AFGS1: no second read of other files
-    const bool scannable = d.codec_name == "h264" || d.codec_name == "hevc" || d.codec_name == "vvc" || d.codec_name == "av1";
-    const std::vector<std::optional<Afgs1Payload>> afgs1 =
-        o.no_grain || !scannable ? std::vector<std::optional<Afgs1Payload>>{} : afgs1_in_output_order(o.input, warn);
+    const StreamMetadata stream = o.no_grain ? StreamMetadata{} : read_stream_metadata(o.input, d.codec_name, warn);
     // Pictures are not copied out of the decoder: the synthesis writes its output frame
     // straight from the decoder's picture (as dav1d does), and pictures without grain are
     // written from the decoder's picture itself.
@@ -206,41 +183,19 @@ int run_decode(const DecodeOptions& o) {
         const int64_t position = picture_position++;
         if (o.frame_count >= 0 && position >= int64_t(o.first_frame) + o.frame_count) break;
         if (position < o.first_frame) continue;
-        if (!o.no_grain && !frame.av1 && !frame.fgc && std::size_t(frame.index) < afgs1.size() &&
-            afgs1[std::size_t(frame.index)]) {
-            // the set AFGS1 7.3 selects for this picture, as resolved AV1 parameters
-            Afgs1Picture pic;
-            pic.width = src.width;
-            pic.height = src.height;
-            pic.format = src.format;
-            pic.bit_depth = src.bit_depth;
-            if (frame.matrix_coefficients != 2) pic.matrix_coefficients = frame.matrix_coefficients;
-            if (const auto sel = select_afgs1_set(*afgs1[std::size_t(frame.index)], pic); sel && sel->params.apply_grain) {
-                frame.av1 = sel->params;
-                frame.matrix_coefficients = sel->matrix_coefficients;
-            }
-        }
-        if (o.no_grain || (!frame.av1 && !frame.fgc)) {
+        if (!o.no_grain) take_afgs1_grain(frame, stream.afgs1, src.width, src.height);
+        const std::optional<FrameInfo> fi = o.no_grain ? std::nullopt : hand_exported_grain(session, frame);
+        if (!fi) {
             // the decoder's output as it is: the clean pictures grain is added to
             writer->write(src);
             n++;
             progress.frame_done(n);
             continue;
         }
-        FrameInfo fi;
-        if (frame.av1) {
-            Av1FilmGrainParams p = *frame.av1;
-            p.update_grain = 1;
-            session.receive_av1_params(p, 0, frame.matrix_coefficients);
-        } else {
-            session.receive_fgc_params(*frame.fgc, frame.fgc_codec);
-            // FFmpeg's seed is the RDD 5 picture offset (see the top of this file)
-            fi.ids = FgcPictureIds{int(frame.seed), 0};
-        }
         if (frame.fgc && grain_before_crop)
-            session.apply(coded_src, coded_dst, &fi);
+            session.apply(coded_src, coded_dst, &*fi);
         else
-            session.apply(src, v, &fi);
+            session.apply(src, v, &*fi);
         with_grain++;
         writer->write(v);
         n++;

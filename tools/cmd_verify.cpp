@@ -30,10 +30,7 @@
 #include "verify/verification_report.hpp"
 #endif
 #ifdef FILMGRAIN_HAVE_LIBAV
-#include "bitstream/av1_grain_extraction.hpp"
-#include "bitstream/stream_scan.hpp"
-#include "libav/video_decoder.hpp"
-#include "metadata/afgs1.hpp"
+#include "decoded_grain.hpp"
 #endif
 
 namespace filmgrain::cli {
@@ -51,6 +48,7 @@ struct VerifyOptions {
     int diagnose = 8;       // mismatching pictures the hypotheses are tried on
     int list_frames = 20;   // mismatching pictures detailed in the text report
     bool quiet = false;
+    bool list_mistakes = false;
     // --simulate ID -o OUT: what a decoder making mistake ID outputs, instead of verifying
     std::string simulate, output;
 };
@@ -65,6 +63,12 @@ struct ReferencePicture {
     int index = 0;
     FrameBuffer clean, expected;
     verify::PictureFacts facts;
+    std::string md5;  // of `expected`, made on first use (.md5 lists: compared up to kLookahead times)
+
+    const std::string& expected_md5() {
+        if (md5.empty()) md5 = verify::picture_md5(expected.view());
+        return md5;
+    }
 };
 
 // Fills facts from what the session applied (ApplyResult::applied).
@@ -160,17 +164,9 @@ public:
         decoder_.on_damage([this](const libav::DamagedUnit& u) {
             if (!o_.quiet) std::fprintf(stderr, "filmgrain: warning: %s\n", libav::describe(u).c_str());
         });
-        const std::string& codec = decoder_.description().codec_name;
-        if (codec == "h264" || codec == "hevc" || codec == "vvc" || codec == "av1") {
-            try {
-                scan_ = bitstream::scan_stream_file(o.stream, std::nullopt);
-                units_ = bitstream::units_in_output_order(scan_);
-                std::vector<std::string> warnings;
-                afgs1_ = bitstream::afgs1_payloads_in_output_order(scan_, warnings);
-            } catch (const Error&) {
-                units_.clear();  // a container the scanner does not read: libav's metadata only
-            }
-        }
+        stream_ = read_stream_metadata(o.stream, decoder_.description().codec_name, [this](const std::string& w) {
+            if (!o_.quiet) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
+        });
     }
     bool next(ReferencePicture& pic) override {
         libav::DecodedFrame frame;
@@ -178,39 +174,21 @@ public:
         pic.index = index_++;
         pic.facts = {};
         const bitstream::AccessUnit* unit =
-            std::size_t(frame.index) < units_.size() ? units_[std::size_t(frame.index)] : nullptr;
-        if (!frame.av1 && !frame.fgc && std::size_t(frame.index) < afgs1_.size() && afgs1_[std::size_t(frame.index)]) {
-            Afgs1Picture p;
-            p.width = frame.picture.width();
-            p.height = frame.picture.height();
-            p.format = frame.picture.format().chroma;
-            p.bit_depth = frame.picture.format().bit_depth;
-            if (frame.matrix_coefficients != 2) p.matrix_coefficients = frame.matrix_coefficients;
-            if (const auto sel = select_afgs1_set(*afgs1_[std::size_t(frame.index)], p); sel && sel->params.apply_grain) {
-                frame.av1 = sel->params;
-                frame.matrix_coefficients = sel->matrix_coefficients;
-            }
-        }
-        FrameInfo fi;
-        if (frame.av1) {
-            Av1FilmGrainParams p = *frame.av1;
-            p.update_grain = 1;
-            session_.receive_av1_params(p, 0, frame.matrix_coefficients);
-        } else if (frame.fgc) {
-            session_.receive_fgc_params(*frame.fgc, frame.fgc_codec);
-            fi.ids = FgcPictureIds{int(frame.seed), 0};
-            // the scan's POC and idr_pic_id where they give FFmpeg's seed (RDD 5 pic_offset)
-            if (unit && unit->poc &&
-                uint32_t(*unit->poc) + (uint32_t(unit->idr_pic_id.value_or(0)) << 5) == uint32_t(frame.seed))
-                fi.ids = FgcPictureIds{*unit->poc, unit->idr_pic_id.value_or(0)};
-        }
+            std::size_t(frame.index) < stream_.units.size() ? stream_.units[std::size_t(frame.index)] : nullptr;
+        take_afgs1_grain(frame, stream_.afgs1, frame.picture.width(), frame.picture.height());
+        std::optional<FrameInfo> fi = hand_exported_grain(session_, frame);
+        // the scan's POC and idr_pic_id where they give FFmpeg's seed (RDD 5 pic_offset): the
+        // IDR-term hypothesis needs them apart, and vtm seeds from the POC alone
+        if (fi && frame.fgc && unit && unit->poc &&
+            uint32_t(*unit->poc) + (uint32_t(unit->idr_pic_id.value_or(0)) << 5) == uint32_t(frame.seed))
+            fi->ids = FgcPictureIds{*unit->poc, unit->idr_pic_id.value_or(0)};
         pic.clean = std::move(frame.picture);
         pic.expected = FrameBuffer::uninitialized(pic.clean.width(), pic.clean.height(), pic.clean.format());
-        if (!frame.av1 && !frame.fgc) {
+        if (!fi) {
             copy_frame(pic.clean.view(), pic.expected.view());
             return true;
         }
-        const ApplyResult r = session_.apply(pic.clean.view(), pic.expected.view(), &fi);
+        const ApplyResult r = session_.apply(pic.clean.view(), pic.expected.view(), &*fi);
         facts_from_applied(r, flavour_, pic.facts);
         if (pic.facts.model == verify::PictureFacts::Model::kAv1) {
             if (unit) {
@@ -233,9 +211,7 @@ private:
     FgcFlavour flavour_;
     libav::VideoDecoder decoder_;
     Session session_;
-    bitstream::StreamScan scan_;
-    std::vector<const bitstream::AccessUnit*> units_;
-    std::vector<std::optional<Afgs1Payload>> afgs1_;
+    StreamMetadata stream_;  // its units point into its own scan (moved with it)
     std::optional<Av1FilmGrainParams> previous_av1_;
     int index_ = 0;
 };
@@ -360,6 +336,10 @@ int run_simulate(const VerifyOptions& o, ReferenceSource& source) {
 }
 
 int run_verify(const VerifyOptions& o) {
+    if (o.list_mistakes) {
+        for (const std::string& id : verify::hypothesis_ids()) std::printf("%s\n", id.c_str());
+        return 0;
+    }
     const FgcFlavour flavour = parse_flavour(o.flavour);
     if (o.persistence != "reference" && o.persistence != "semantic")
         throw Error(ErrorCode::kInvalidArgument, "--persistence '" + o.persistence + "' is not known (allowed reference, semantic)");
@@ -406,13 +386,16 @@ int run_verify(const VerifyOptions& o) {
     int diagnosed = 0, decoded_count = 0;
     FrameBuffer decoded;
     std::string decoded_md5;
+    // raw YUV output: --size / --pix-fmt, else the reference's (Y4M describes itself)
+    VideoInfo raw = o.raw.to_info();
+    bool raw_known = !o.raw.size.empty();
     for (;;) {
         fill(1);
-        VideoInfo raw = o.raw.to_info();
-        if (!ahead.empty() && o.raw.size.empty()) {
+        if (!raw_known && !ahead.empty()) {
             raw.width = ahead.front().clean.width();
             raw.height = ahead.front().clean.height();
             raw.format = ahead.front().clean.format();
+            raw_known = true;
         }
         if (!decoded_input.next(decoded, decoded_md5, raw)) break;
         const int decoded_index = decoded_count++;
@@ -433,24 +416,28 @@ int run_verify(const VerifyOptions& o) {
                                                      : result.model == "av1" ? "av1 (AV1 7.18.3; AFGS1 sets as AV1)" : "no grain";
         }
         if (!decoded_input.md5()) check_decoded_shape(decoded, ahead.front().expected, decoded_index);
-        auto matches = [&](ReferencePicture& pic) {
-            return decoded_input.md5() ? verify::picture_md5(pic.expected.view()) == decoded_md5
-                                       : verify::picture_distance(pic.expected.view(), decoded.view()).exact();
+        // A dropped picture: the decoded one is a later reference picture, exactly, else (whole
+        // pictures only) with less than half the error of the closest so far.
+        const bool md5 = decoded_input.md5();
+        auto distance_to = [&](ReferencePicture& pic) {
+            return verify::picture_distance(pic.expected.view(), decoded.view());
         };
-        // a dropped picture: the decoded one is a later reference picture
+        const verify::Distance own = md5 ? verify::Distance{} : distance_to(ahead.front());
         std::size_t skip = 0;
-        if (!matches(ahead.front())) {
+        if (md5 ? ahead.front().expected_md5() != decoded_md5 : !own.exact()) {
             fill(kLookahead + 1);
-            for (std::size_t k = 1; k < ahead.size() && !skip; k++)
-                if (matches(ahead[k])) skip = k;
-            if (!skip && !decoded_input.md5()) {
-                const double own = verify::picture_distance(ahead.front().expected.view(), decoded.view()).squared_error;
-                double best = own;
-                for (std::size_t k = 1; k < ahead.size(); k++) {
-                    const double e = verify::picture_distance(ahead[k].expected.view(), decoded.view()).squared_error;
-                    if (e < 0.5 * best && e < 0.5 * own) best = e, skip = k;
+            std::size_t closest = 0;
+            double best = own.squared_error;
+            for (std::size_t k = 1; k < ahead.size() && !skip; k++) {
+                if (md5) {
+                    if (ahead[k].expected_md5() == decoded_md5) skip = k;
+                    continue;
                 }
+                const verify::Distance d = distance_to(ahead[k]);
+                if (d.exact()) skip = k;
+                else if (d.squared_error < 0.5 * best) best = d.squared_error, closest = k;
             }
+            if (!skip) skip = closest;
         }
         for (std::size_t k = 0; k < skip; k++) {
             record_missing(ahead.front());
@@ -463,7 +450,7 @@ int run_verify(const VerifyOptions& o) {
         f.decoded_index = decoded_index;
         f.grain_expected = pic.facts.grain_expected();
         if (decoded_input.md5()) {
-            f.expected_md5 = verify::picture_md5(pic.expected.view());
+            f.expected_md5 = pic.expected_md5();
             f.decoded_md5 = decoded_md5;
             f.exact = f.expected_md5 == decoded_md5;
         } else {
@@ -561,6 +548,7 @@ void add_verify_options(CLI::App* sub, VerifyOptions& o) {
                     "instead of verifying, write what a decoder making this mistake outputs (an id of the diagnosis, "
                     "e.g. av1.no_overlap, fgc.no_deblocking, grain_not_applied) to --output");
     sub->add_option("--output,-o", o.output, "with --simulate: the output (.y4m, or raw .yuv)");
+    sub->add_flag("--list-mistakes", o.list_mistakes, "print the id of every mistake verify knows, one per line");
 }
 
 }  // namespace

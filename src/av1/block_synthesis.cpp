@@ -59,6 +59,17 @@ StripeNoise build_stripe_noise(const GrainTemplate& tmpl, int grain_seed, int st
                                int plane_width, int plane_height, int subsampling_x, int subsampling_y, bool overlap,
                                int bit_depth) {
     const int blocks = num_blocks_across(luma_width);
+    // The previous stripe's noise is regenerated rather than kept, so that each stripe
+    // depends only on (params, stripe index).
+    const bool shares_rows = overlap && stripe > 0;
+    return build_stripe_noise(tmpl, stripe_block_offsets(grain_seed, stripe, blocks),
+                              shares_rows ? stripe_block_offsets(grain_seed, stripe - 1, blocks) : std::vector<uint8_t>{},
+                              stripe, plane_width, plane_height, subsampling_x, subsampling_y, overlap, bit_depth);
+}
+
+StripeNoise build_stripe_noise(const GrainTemplate& tmpl, const std::vector<uint8_t>& offsets,
+                               const std::vector<uint8_t>& previous_offsets, int stripe, int plane_width,
+                               int plane_height, int subsampling_x, int subsampling_y, bool overlap, int bit_depth) {
     const int stripe_h = kBlockSize >> subsampling_y;
     StripeNoise out;
     out.width = plane_width;
@@ -66,17 +77,14 @@ StripeNoise build_stripe_noise(const GrainTemplate& tmpl, int grain_seed, int st
     out.samples.assign(static_cast<std::size_t>(out.width) * out.rows, 0);
     if (out.rows == 0) return out;
 
-    const NoiseStripe cur = build_noise_stripe(tmpl, stripe_block_offsets(grain_seed, stripe, blocks), subsampling_x,
-                                               subsampling_y, overlap, bit_depth);
+    const NoiseStripe cur = build_noise_stripe(tmpl, offsets, subsampling_x, subsampling_y, overlap, bit_depth);
     for (int y = 0; y < out.rows; ++y)
         std::copy_n(cur.samples.data() + static_cast<std::size_t>(y) * cur.width, plane_width,
                     out.samples.data() + static_cast<std::size_t>(y) * out.width);
 
     if (overlap && stripe > 0) {
-        // The previous stripe's noise is regenerated here rather than kept, so
-        // that each stripe depends only on (params, stripe index).
-        const NoiseStripe prev = build_noise_stripe(tmpl, stripe_block_offsets(grain_seed, stripe - 1, blocks),
-                                                    subsampling_x, subsampling_y, overlap, bit_depth);
+        const NoiseStripe prev =
+            build_noise_stripe(tmpl, previous_offsets, subsampling_x, subsampling_y, overlap, bit_depth);
         const GrainRange range = grain_range(bit_depth);
         const int overlap_rows = std::min(out.rows, 2 >> subsampling_y);
         for (int i = 0; i < overlap_rows; ++i) {

@@ -69,5 +69,11 @@ struct StripeNoise {
 StripeNoise build_stripe_noise(const GrainTemplate& tmpl, int grain_seed, int stripe, int luma_width,
                                int plane_width, int plane_height, int subsampling_x, int subsampling_y, bool overlap,
                                int bit_depth);
+// The same from the blocks' random bytes of this stripe and of the one above (read only
+// with overlap_flag and stripe > 0), as stripe_block_offsets() draws them: `filmgrain verify`
+// hands in bytes a mistaken decoder would have used.
+StripeNoise build_stripe_noise(const GrainTemplate& tmpl, const std::vector<uint8_t>& offsets,
+                               const std::vector<uint8_t>& previous_offsets, int stripe, int plane_width,
+                               int plane_height, int subsampling_x, int subsampling_y, bool overlap, int bit_depth);
 
 }  // namespace filmgrain::av1

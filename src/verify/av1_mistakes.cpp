@@ -61,33 +61,15 @@ std::vector<uint8_t> block_offsets(int seed, int stripe, int blocks, bool swappe
     return o;
 }
 
-// The plane's noise for one stripe with the vertical overlap of 7.18.3.5 (as
-// build_stripe_noise, from offsets the mistake may have swapped).
+// The plane's noise for one stripe (7.18.3.5) from the block offsets the mistake draws.
 av1::StripeNoise stripe_noise(const GrainTemplate& t, const Av1FilmGrainParams& p, Av1Mistake m, int stripe,
                               int luma_width, int pw, int ph, int sx, int sy, int bit_depth) {
     const int blocks = av1::num_blocks_across(luma_width);
-    const int stripe_h = av1::kBlockSize >> sy;
     const bool overlap = p.overlap_flag != 0, swapped = m == Av1Mistake::kBlockOffsetsSwapped;
-    av1::StripeNoise out;
-    out.width = pw;
-    out.rows = std::max(0, std::min(stripe_h, ph - stripe * stripe_h));
-    out.samples.assign(std::size_t(out.width) * std::size_t(std::max(out.rows, 0)), 0);
-    if (out.rows == 0) return out;
-    const av1::NoiseStripe cur =
-        av1::build_noise_stripe(t, block_offsets(p.grain_seed, stripe, blocks, swapped), sx, sy, overlap, bit_depth);
-    for (int y = 0; y < out.rows; y++)
-        std::copy_n(cur.samples.data() + std::size_t(y) * std::size_t(cur.width), pw,
-                    out.samples.data() + std::size_t(y) * std::size_t(pw));
-    if (!overlap || stripe == 0) return out;
-    const av1::NoiseStripe prev = av1::build_noise_stripe(t, block_offsets(p.grain_seed, stripe - 1, blocks, swapped),
-                                                          sx, sy, overlap, bit_depth);
-    const av1::GrainRange range = av1::grain_range(bit_depth);
-    for (int i = 0; i < std::min(out.rows, 2 >> sy); i++) {
-        int16_t* row = out.samples.data() + std::size_t(i) * std::size_t(pw);
-        for (int x = 0; x < pw; x++)
-            row[x] = int16_t(av1::cross_fade(prev.at(i + stripe_h, x), row[x], av1::overlap_weights(i, sy), range));
-    }
-    return out;
+    return av1::build_stripe_noise(
+        t, block_offsets(p.grain_seed, stripe, blocks, swapped),
+        overlap && stripe > 0 ? block_offsets(p.grain_seed, stripe - 1, blocks, swapped) : std::vector<uint8_t>{},
+        stripe, pw, ph, sx, sy, overlap, bit_depth);
 }
 
 template <typename Pixel>

@@ -53,6 +53,12 @@ const std::vector<FgcMistakeInfo>& fgc_picture_mistakes() {
     return list;
 }
 
+const char* fgc_mistake_id(FgcMistake mistake) {
+    for (const FgcMistakeInfo& m : fgc_picture_mistakes())
+        if (m.mistake == mistake) return m.id;
+    return "";
+}
+
 int fgc_reference_block_size(const FgcPictureFacts& facts, int width, int height) {
     const int coded_w = facts.coded_width ? facts.coded_width : (width + 15) & ~15;
     const int coded_h = facts.coded_height ? facts.coded_height : (height + 15) & ~15;

@@ -45,6 +45,8 @@ struct FgcMistakeInfo {
     const char* description;
 };
 const std::vector<FgcMistakeInfo>& fgc_picture_mistakes();
+// The id fgc_picture_mistakes() gives `mistake` ("" for kNone).
+const char* fgc_mistake_id(FgcMistake mistake);
 
 // false when the mistake cannot change this picture (the reference's own flavour or block
 // size, idr_pic_id 0, a picture with its own SEI for kSemanticPersistence, no chroma...).

@@ -107,8 +107,8 @@ std::vector<std::string> certain_hypotheses(const PictureFacts& f, const FrameVi
             out.push_back(kShowExistingReuse);
         if (!f.av1_other_slots.empty()) out.push_back(kWrongSlot);
     } else if (f.model == PictureFacts::Model::kFgc) {
-        if (fgc_mistake_applies(FgcMistake::kSemanticPersistence, f.fgc, clean)) out.push_back("fgc.semantic_persistence");
-        if (fgc_mistake_applies(FgcMistake::kIdrTermToggled, f.fgc, clean)) out.push_back("fgc.idr_term_in_seed");
+        for (FgcMistake m : {FgcMistake::kSemanticPersistence, FgcMistake::kIdrTermToggled})
+            if (fgc_mistake_applies(m, f.fgc, clean)) out.push_back(fgc_mistake_id(m));
     }
     return out;
 }

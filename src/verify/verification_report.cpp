@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdarg>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -22,13 +23,18 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string printf_string(const char* format, ...) __attribute__((format(printf, 1, 2)));
+// Formats are literals (checked by the attribute); the text is sized to fit, so that long
+// ids, descriptions or paths are never cut.
 std::string printf_string(const char* format, ...) {
-    char buf[512];
-    va_list args;
+    va_list args, again;
     va_start(args, format);
-    std::vsnprintf(buf, sizeof buf, format, args);
+    va_copy(again, args);
+    const int length = std::vsnprintf(nullptr, 0, format, args);
     va_end(args);
-    return buf;
+    std::string out(std::size_t(std::max(length, 0)), '\0');
+    if (length > 0) std::vsnprintf(out.data(), out.size() + 1, format, again);
+    va_end(again);
+    return out;
 }
 
 const char* plane_name(std::size_t plane) {

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "random_av1_params.hpp"
 #include "av1/av1_picture_synthesis.hpp"
 #include "av1/block_synthesis.hpp"
 #include "av1/grain_blending.hpp"
@@ -327,50 +328,12 @@ TEST_P(SimdEquivalence, Av1ChromaIndexAtExtremeMultipliers8Bit) {
                 }
 }
 
-Av1FilmGrainParams random_av1_params(std::mt19937& rng, int bd, bool mono) {
-    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
-    Av1FilmGrainParams p;
-    p.apply_grain = 1;
-    p.grain_seed = u(0, 65535);
-    auto points = [&](int max_n, auto& values, auto& scalings) {
-        const int n = u(0, max_n);
-        int v = -1, k = 0;
-        for (; k < n; k++) {
-            v += u(1, 30);
-            if (v > 255) break;
-            values[std::size_t(k)] = v;
-            scalings[std::size_t(k)] = u(0, 255);
-        }
-        return k;
-    };
-    p.num_y_points = points(14, p.point_y_value, p.point_y_scaling);
-    if (!mono) {
-        p.chroma_scaling_from_luma = u(0, 3) == 0;
-        if (!p.chroma_scaling_from_luma) {
-            p.num_cb_points = points(10, p.point_cb_value, p.point_cb_scaling);
-            p.num_cr_points = points(10, p.point_cr_value, p.point_cr_scaling);
-        }
-    }
-    p.grain_scaling_minus_8 = u(0, 3);
-    p.ar_coeff_lag = u(0, 3);
-    for (auto& c : p.ar_coeffs_y_plus_128) c = u(100, 156);
-    for (auto& c : p.ar_coeffs_cb_plus_128) c = u(100, 156);
-    for (auto& c : p.ar_coeffs_cr_plus_128) c = u(100, 156);
-    p.ar_coeff_shift_minus_6 = u(0, 3);
-    p.grain_scale_shift = u(0, 3);
-    p.cb_mult = u(0, 255), p.cb_luma_mult = u(0, 255), p.cb_offset = u(0, 511);
-    p.cr_mult = u(0, 255), p.cr_luma_mult = u(0, 255), p.cr_offset = u(0, 511);
-    p.overlap_flag = u(0, 1);
-    p.clip_to_restricted_range = u(0, 1);
-    (void)bd;
-    return p;
-}
 
 TEST_P(SimdEquivalence, Av1NoiseStripeRows) {
     for (int iter = 0; iter < 60; iter++) {
         const int bd = std::array<int, 3>{8, 10, 12}[std::size_t(uniform(0, 2))];
         const int sx = uniform(0, 1), sy = uniform(0, 1);
-        Av1FilmGrainParams p = random_av1_params(rng, bd, false);
+        Av1FilmGrainParams p = test_support::random_av1_params(rng, false);
         p.num_y_points = std::max(p.num_y_points, 0);
         const av1::GrainTemplate luma = av1::generate_luma_template(p, bd);
         const int luma_width = uniform(1, 200), stripe = uniform(0, 40);
@@ -428,7 +391,7 @@ TEST_P(SimdEquivalence, Av1CrossFadedStripeRows) {
     for (int iter = 0; iter < 60; iter++) {
         const int bd = uniform(0, 1) ? 10 : 8;
         const int sx = uniform(0, 1), sy = uniform(0, 1);
-        Av1FilmGrainParams p = random_av1_params(rng, bd, false);
+        Av1FilmGrainParams p = test_support::random_av1_params(rng, false);
         const av1::GrainTemplate luma = av1::generate_luma_template(p, bd);
         const av1::GrainTemplate tmpl = sx || sy ? av1::generate_chroma_template(p, bd, 1, sx, sy, luma) : luma;
         const int luma_width = uniform(1, 200), stripe = uniform(1, 40);
@@ -500,7 +463,7 @@ TEST_P(SimdEquivalence, Av1WholeFrames) {
         const int w = uniform(1, 180), h = uniform(1, 150);
         Av1FilmGrainParams p;
         for (;;) {  // draw until the set is valid for the format (e.g. 4:2:0 chroma point rules)
-            p = random_av1_params(rng, bd, cf == ChromaFormat::k400);
+            p = test_support::random_av1_params(rng, cf == ChromaFormat::k400);
             try {
                 av1::Av1SynthesisContext check(p, cf, bd, 16, 16, 1);
                 break;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "av1/av1_picture_synthesis.hpp"
+#include "random_av1_params.hpp"
 #include "verify/av1_mistakes.hpp"
 #include "verify/picture_comparison.hpp"
 #include "verify_test_pictures.hpp"
@@ -15,42 +16,10 @@ using namespace filmgrain::verify;
 
 namespace {
 
+// A valid set: 4:2:0 needs both chroma functions or neither (AV1 6.8.20).
 Av1FilmGrainParams random_params(std::mt19937& rng, bool mono) {
-    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
-    Av1FilmGrainParams p;
-    p.apply_grain = 1;
-    p.grain_seed = u(0, 65535);
-    auto points = [&](int max_n, auto& values, auto& scalings) {
-        int v = -1, k = 0;
-        for (const int n = u(0, max_n); k < n; k++) {
-            v += u(1, 30);
-            if (v > 255) break;
-            values[std::size_t(k)] = v;
-            scalings[std::size_t(k)] = u(0, 255);
-        }
-        return k;
-    };
-    p.num_y_points = points(14, p.point_y_value, p.point_y_scaling);
-    if (!mono) {
-        p.chroma_scaling_from_luma = u(0, 3) == 0;
-        if (!p.chroma_scaling_from_luma) {
-            p.num_cb_points = points(10, p.point_cb_value, p.point_cb_scaling);
-            p.num_cr_points = points(10, p.point_cr_value, p.point_cr_scaling);
-            // 4:2:0 needs both chroma functions or neither (AV1 6.8.20)
-            if ((p.num_cb_points == 0) != (p.num_cr_points == 0)) p.num_cb_points = p.num_cr_points = 0;
-        }
-    }
-    p.grain_scaling_minus_8 = u(0, 3);
-    p.ar_coeff_lag = u(0, 3);
-    for (auto& c : p.ar_coeffs_y_plus_128) c = u(100, 156);
-    for (auto& c : p.ar_coeffs_cb_plus_128) c = u(100, 156);
-    for (auto& c : p.ar_coeffs_cr_plus_128) c = u(100, 156);
-    p.ar_coeff_shift_minus_6 = u(0, 3);
-    p.grain_scale_shift = u(0, 3);
-    p.cb_mult = u(0, 255), p.cb_luma_mult = u(0, 255), p.cb_offset = u(0, 511);
-    p.cr_mult = u(0, 255), p.cr_luma_mult = u(0, 255), p.cr_offset = u(0, 511);
-    p.overlap_flag = u(0, 1);
-    p.clip_to_restricted_range = u(0, 1);
+    Av1FilmGrainParams p = test_support::random_av1_params(rng, mono);
+    if ((p.num_cb_points == 0) != (p.num_cr_points == 0)) p.num_cb_points = p.num_cr_points = 0;
     p.chroma_point_counts_signalled = true;
     return p;
 }

@@ -8,13 +8,14 @@
 // pictures between rely on persistence (tests/verify/decoder_acceptance.py).
 //
 // FGC.json holds the SEI's syntax elements in the project's JSON form (params convert).
-#include <algorithm>
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bitstream/metadata_insertion.hpp"
@@ -30,7 +31,14 @@ int main(int argc, char** argv) {
     }
     try {
         const auto codec = filmgrain::bitstream::parse_stream_codec(argc >= 5 ? argv[4] : "hevc");
-        const int every = argc == 6 ? std::max(1, std::atoi(argv[5])) : 1;
+        int every = 1;
+        if (argc == 6) {
+            const std::string_view text(argv[5]);
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), every);
+            if (ec != std::errc() || end != text.data() + text.size() || every < 1)
+                throw std::runtime_error("EVERY '" + std::string(text) + "' is not a whole number 1.." +
+                                         std::to_string(INT32_MAX));
+        }
         if (codec == filmgrain::bitstream::StreamCodec::kAv1) throw std::runtime_error("AV1 carries no SEI (allowed hevc, h264, vvc)");
         const std::vector<uint8_t> in = filmgrain::read_whole_file(argv[1], std::size_t(1) << 30, "an Annex-B stream");
         const filmgrain::FgcParams params = filmgrain::fgc_params_from_json(filmgrain::read_json_file(argv[3]));
