@@ -19,6 +19,7 @@
 #include "physical/gaussian_approximation.hpp"
 #include "stats/grain_statistics.hpp"
 #include "tradeoff_methods.hpp"
+#include "tradeoff_offsets.hpp"
 #include "tradeoff_plot.hpp"
 
 namespace filmgrain::cli {
@@ -305,6 +306,7 @@ void register_tradeoff(CLI::App& app) {
         }
         md << "\nThe Boolean model's error at finite N is mostly the Monte Carlo variance u(1-u)/N added at lag 0 (its "
            << "expected covariance is C(d)/N + (1 - 1/N) C_sigma(d) for shared offsets); it falls as 1/N.\n";
+        md << "\n" << boolean_offsets_section(tp, grey, o->samples, o->boolean_size);
         if (!bench.empty()) md << "\n## Boolean renderer benchmark\n\n" << bench << "\n";
         std::string why;
         const bool plotted = write_tradeoff_plot(o->plot, pts, &why);

@@ -11,7 +11,9 @@
 //   output is identical for every thread count, tiling and region of interest;
 // - the offsets xi_k are shared by all pixels (as the published grain-wise algorithm does)
 //   in both algorithms here, so the pixel-wise and the grain-wise algorithm give the same
-//   output and the choice between them is only about speed;
+//   output and the choice between them is only about speed; they are a randomly shifted
+//   low-discrepancy set, not independent draws (monte_carlo_offsets.hpp: isotropic grain
+//   in every frame, mean still unbiased);
 // - outside the picture the intensity of the nearest edge pixel continues, so borders are
 //   not darkened;
 // - u is clamped to 1 - grey_epsilon (lambda is infinite at u = 1).
@@ -41,6 +43,8 @@ struct BooleanModelParams {
     uint64_t seed = 0;
     BooleanAlgorithm algorithm = BooleanAlgorithm::kAuto;
     int threads = 1;
+    // The scalar reference kernels instead of the vector ones (same output; for the tests).
+    bool reference_kernels = false;
 };
 
 // A region of output pixels (coordinates in the full zoomed picture). w == 0: everything.
@@ -61,10 +65,6 @@ void validate(const BooleanModelParams& p);
 
 // Output size of the full zoomed picture: floor(zoom * size), at least 1.
 int zoomed_size(int input_size, double zoom);
-
-// The Monte Carlo offsets xi_k (input-pixel units) for a plane seed: the first k of them
-// are the same for every N >= k.
-std::vector<double> monte_carlo_offsets(const BooleanModelParams& p, uint64_t plane_seed, int count);
 
 // Renders `region` of the grain picture of the grey levels `u` (values in [0, 1]) into
 // `out` (resized to the region). `plane_seed` separates planes / frames.

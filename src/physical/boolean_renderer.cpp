@@ -13,6 +13,8 @@
 #include "physical/cell_random.hpp"
 #include "physical/grain_field.hpp"
 #include "physical/monte_carlo_estimators.hpp"
+#include "physical/monte_carlo_offsets.hpp"
+#include "physical/sample_points.hpp"
 
 namespace filmgrain::physical {
 
@@ -32,12 +34,21 @@ void check_range(const char* field, double v, double lo, double hi, bool lo_open
 constexpr double kMaxGrainsPerPixel = 2e5;
 // Bins (and cells) one tile may hold, which bounds a thread's memory.
 constexpr double kMaxBinsPerTile = 4e6;
+// Bytes of coverage masks one tile may hold (the unit-zoom estimator): they are read once
+// per sample of every pixel, so they should stay near the L2 cache.
+constexpr double kMaxMaskBytesPerTile = 8e6;
 
 int cells_per_pixel_for(const GrainRadiusLaw& law) {
     // Cells about one typical grain diameter wide: a bin then lists a few grains.
     const double k = std::round(1.0 / (2.0 * std::sqrt(law.mean_square())));
     return int(std::clamp(k, 1.0, 256.0));
 }
+
+// Grains are drawn per cell: a hash and a Poisson draw each. Cells three bins wide hold about
+// nine grains at mid grey (one per cell when cells were bins), so that cost is spread over the
+// grains, and the darkest allowed grey still asks the Poisson inversion for a mean near 80,
+// whose exp(-mean) a double holds.
+int generation_cells_per_pixel(int bins_per_pixel) { return std::max(1, (bins_per_pixel + 1) / 3); }
 
 void sort_offsets_by_bin(std::vector<double>& xi, int k) {
     const std::size_t n = xi.size() / 2;
@@ -90,14 +101,6 @@ void validate(const BooleanModelParams& p) {
     }
 }
 
-std::vector<double> monte_carlo_offsets(const BooleanModelParams& p, uint64_t plane_seed, int count) {
-    std::vector<double> xi(2 * std::size_t(count));
-    const double s = p.filter_sigma / p.zoom;
-    CellRandom rng(hash_coordinates(-1, -1, plane_seed ^ 0x5bd1e995u));
-    for (double& v : xi) v = s * rng.normal();
-    return xi;
-}
-
 RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams& p, const OutputRegion& region_in,
                                   uint64_t plane_seed, FloatPlane& out) {
     validate(p);
@@ -122,8 +125,11 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
     std::vector<double> xi = monte_carlo_offsets(p, plane_seed, n_offsets);
     // With a fixed N the estimate is a sum, so the order of the samples is free: visiting
     // them bin row by bin row keeps the bins a pixel looks at in cache. (With a tolerance
-    // the first n samples must stay an unbiased draw, so their order is kept.)
-    if (!adaptive) sort_offsets_by_bin(xi, k);
+    // the first n samples must stay an unbiased draw, so their order is kept; at unit zoom
+    // the mask estimator reads bits, not bins, and the order does not matter.)
+    const bool unit_zoom = p.zoom == 1.0;
+    if (!adaptive && !unit_zoom) sort_offsets_by_bin(xi, k);
+    const SamplePoints points(xi, n_offsets, p.zoom, k);
     double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
     for (int i = 0; i < n_offsets; i++) {
         xmin = std::min(xmin, xi[2 * i]);
@@ -138,7 +144,7 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
     const int px1 = int(std::floor(output_to_input(r.x + r.w - 1, p.zoom) + xmax + law.max_radius())) + 1;
     const int py0 = int(std::floor(output_to_input(r.y, p.zoom) + ymin - law.max_radius())) - 1;
     const int py1 = int(std::floor(output_to_input(r.y + r.h - 1, p.zoom) + ymax + law.max_radius())) + 1;
-    const CellIntensity intensity(u, law, p.grey_epsilon, k, px0, py0, px1, py1);
+    const CellIntensity intensity(u, law, p.grey_epsilon, generation_cells_per_pixel(k), px0, py0, px1, py1);
 
     RenderReport report;
     const double mean_cell_count = intensity.average_mean();
@@ -146,7 +152,7 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
 
     // Cost per output pixel and sample: a bin look-up and the grains of the bin, against
     // every grain's bounding box of pixels (plus the per-grain overhead).
-    const double lambda = mean_cell_count * k * k;
+    const double lambda = mean_cell_count * intensity.cells_per_pixel() * intensity.cells_per_pixel();
     const double er = law.mean();
     const double pixel_cost = 4.0 + lambda * std::pow(1.0 / k + 2 * er, 2);
     const double grain_cost = 1.0 + lambda / (p.zoom * p.zoom) * (3.0 + std::pow(2 * er * p.zoom + 2, 2));
@@ -154,6 +160,10 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
     if (algo == BooleanAlgorithm::kAuto || adaptive)
         algo = (adaptive || pixel_cost <= grain_cost) ? BooleanAlgorithm::kPixelWise : BooleanAlgorithm::kGrainWise;
     report.algorithm = algo;
+    // The mask estimator: unit zoom, a fixed N (a tolerance stops each pixel on its own).
+    const bool by_masks = unit_zoom && !adaptive && algo == BooleanAlgorithm::kPixelWise;
+    SampleClasses classes;
+    if (by_masks) classes = group_samples_by_class(points);
 
     if (!any_grain) {  // a black plane: no grain, nothing to model
         report.mean_samples = 0;
@@ -163,6 +173,9 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
     // Tile side in output pixels: about 64 input pixels, fewer when the bins would not fit.
     int tile = std::clamp(int(std::lround(64 * p.zoom)), 1, 256);
     while (tile > 1 && std::pow((tile / p.zoom + 2 * margin) * k, 2) > kMaxBinsPerTile) tile = (tile + 1) / 2;
+    while (by_masks && tile > 8 &&
+           std::pow((tile + 2 * margin) * k + 2, 2) * classes.words * 8.0 > kMaxMaskBytesPerTile)
+        tile = (tile + 1) / 2;
     const int tiles_x = (r.w + tile - 1) / tile, tiles_y = (r.h + tile - 1) / tile;
     report.tiles = tiles_x * tiles_y;
 
@@ -180,17 +193,19 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
             rect.y0 = r.y + ty * tile;
             rect.x1 = std::min(rect.x0 + tile, r.x + r.w);
             rect.y1 = std::min(rect.y0 + tile, r.y + r.h);
-            field.generate(intensity, law, k, plane_seed, output_to_input(rect.x0, p.zoom) + xmin,
-                           output_to_input(rect.y0, p.zoom) + ymin, output_to_input(rect.x1 - 1, p.zoom) + xmax,
-                           output_to_input(rect.y1 - 1, p.zoom) + ymax, algo == BooleanAlgorithm::kPixelWise);
+            const InputRect reach = sample_reach(points, rect, p.zoom);
+            field.generate(intensity, law, k, plane_seed, reach.x0, reach.y0, reach.x1, reach.y1,
+                           algo == BooleanAlgorithm::kPixelWise);
             grains += field.grains().size();
             SampleSchedule sched;
-            sched.offsets = &xi;
-            sched.count = n_offsets;
+            sched.points = &points;
+            sched.classes = by_masks ? &classes : nullptr;
             sched.tolerance = (adaptive && p.filter_sigma > 0) ? p.tolerance : 0;
             sched.min_samples = std::min(p.min_samples, n_offsets);
-            sched.zoom = p.zoom;
-            if (algo == BooleanAlgorithm::kPixelWise)
+            sched.reference_kernels = p.reference_kernels;
+            if (by_masks)
+                estimate_pixel_wise_by_masks(field, rect, sched, est);
+            else if (algo == BooleanAlgorithm::kPixelWise)
                 estimate_pixel_wise(field, rect, sched, est);
             else
                 estimate_grain_wise(field, rect, sched, est);

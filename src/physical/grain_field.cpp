@@ -17,6 +17,7 @@ CellIntensity::CellIntensity(const FloatPlane& u, const GrainRadiusLaw& radius, 
     x1_ = std::clamp(px1, 0, u.width - 1);
     y0_ = std::clamp(py0, 0, u.height - 1);
     y1_ = std::clamp(py1, 0, u.height - 1);
+    k_ = cells_per_pixel;
     w_ = x1_ - x0_ + 1;
     h_ = y1_ - y0_ + 1;
     m_.resize(std::size_t(w_) * h_);
@@ -51,7 +52,8 @@ std::size_t CellIntensity::index(int px, int py) const {
 }
 
 void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity, const GrainRadiusLaw& radius,
-                          int cells_per_pixel, uint64_t seed, std::vector<Grain>& out) {
+                          uint64_t seed, std::vector<Grain>& out) {
+    const int cells_per_pixel = intensity.cells_per_pixel();
     const int px = int(std::clamp<int64_t>(floor_div(cx, cells_per_pixel), -1, 1 << 30));
     const int py = int(std::clamp<int64_t>(floor_div(cy, cells_per_pixel), -1, 1 << 30));
     const double e = intensity.exp_neg_mean(px, py);
@@ -77,15 +79,16 @@ void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity
     }
 }
 
-void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel,
+void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel,
                           uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins) {
-    k_ = cells_per_pixel;
+    k_ = bins_per_pixel;
     grains_.clear();
     const double rm = radius.max_radius();
-    const int64_t cx0 = int64_t(std::floor((x0 - rm) * k_)), cx1 = int64_t(std::floor((x1 + rm) * k_));
-    const int64_t cy0 = int64_t(std::floor((y0 - rm) * k_)), cy1 = int64_t(std::floor((y1 + rm) * k_));
+    const int kc = intensity.cells_per_pixel();
+    const int64_t cx0 = int64_t(std::floor((x0 - rm) * kc)), cx1 = int64_t(std::floor((x1 + rm) * kc));
+    const int64_t cy0 = int64_t(std::floor((y0 - rm) * kc)), cy1 = int64_t(std::floor((y1 + rm) * kc));
     for (int64_t cy = cy0; cy <= cy1; cy++)
-        for (int64_t cx = cx0; cx <= cx1; cx++) generate_cell_grains(cx, cy, intensity, radius, cells_per_pixel, seed, grains_);
+        for (int64_t cx = cx0; cx <= cx1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
     if (!build_bins) return;
 
     bx0_ = int64_t(std::floor(x0 * k_));
@@ -97,25 +100,25 @@ void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& 
     // for a point of a bin is listed in that bin: float rounding of bin-local coordinates is
     // below 1e-6 bin units, the pad is a hundred times that.
     constexpr double kPad = 1e-4;
-    auto bin_range = [&](const Grain& g, int64_t& lx, int64_t& hx, int64_t& ly, int64_t& hy) {
+    // Each grain's bin range is computed once, for the count and again for the fill.
+    ranges_.resize(grains_.size());
+    for (std::size_t i = 0; i < grains_.size(); i++) {
+        const Grain& g = grains_[i];
         const double r = std::sqrt(g.r2);
-        lx = std::max<int64_t>(int64_t(std::floor((g.x - r) * k_ - kPad)) - bx0_, 0);
-        hx = std::min<int64_t>(int64_t(std::floor((g.x + r) * k_ + kPad)) - bx0_, nbx_ - 1);
-        ly = std::max<int64_t>(int64_t(std::floor((g.y - r) * k_ - kPad)) - by0_, 0);
-        hy = std::min<int64_t>(int64_t(std::floor((g.y + r) * k_ + kPad)) - by0_, nby_ - 1);
-    };
-    for (const Grain& g : grains_) {
-        int64_t lx, hx, ly, hy;
-        bin_range(g, lx, hx, ly, hy);
-        for (int64_t by = ly; by <= hy; by++)
-            for (int64_t bx = lx; bx <= hx; bx++) start_[std::size_t(by * nbx_ + bx) + 1]++;
+        BinRange& b = ranges_[i];
+        b.lx = std::max<int64_t>(floor_to_int((g.x - r) * k_ - kPad) - bx0_, 0);
+        b.hx = std::min<int64_t>(floor_to_int((g.x + r) * k_ + kPad) - bx0_, nbx_ - 1);
+        b.ly = std::max<int64_t>(floor_to_int((g.y - r) * k_ - kPad) - by0_, 0);
+        b.hy = std::min<int64_t>(floor_to_int((g.y + r) * k_ + kPad) - by0_, nby_ - 1);
+        for (int64_t by = b.ly; by <= b.hy; by++)
+            for (int64_t bx = b.lx; bx <= b.hx; bx++) start_[std::size_t(by * nbx_ + bx) + 1]++;
     }
     for (std::size_t i = 1; i < start_.size(); i++) start_[i] += start_[i - 1];
     binned_.resize(start_.back());
     fill_.assign(start_.begin(), start_.end() - 1);
-    for (const Grain& g : grains_) {
-        int64_t lx, hx, ly, hy;
-        bin_range(g, lx, hx, ly, hy);
+    for (std::size_t i = 0; i < grains_.size(); i++) {
+        const Grain& g = grains_[i];
+        const int64_t lx = ranges_[i].lx, hx = ranges_[i].hx, ly = ranges_[i].ly, hy = ranges_[i].hy;
         const float r2k = r2_in_bins(g.r2, k_);
         for (int64_t by = ly; by <= hy; by++)
             for (int64_t bx = lx; bx <= hx; bx++)

@@ -1,4 +1,5 @@
 // The grains of the Boolean model over a rectangle, generated cell by cell and binned.
+// Grains are drawn per cell; the bins a look-up reads are a finer grid of their own.
 // Cells are squares of side 1/cells_per_pixel aligned on the input pixel grid, so each lies
 // in one input pixel and its grain count is Poisson(lambda(pixel) * cell area). A cell's
 // grains depend only on its coordinates and the seed (cell_random.hpp).
@@ -51,10 +52,11 @@ public:
     double mean(int px, int py) const { return m_[index(px, py)]; }
     double average_mean() const;
     bool any_grain() const;
+    int cells_per_pixel() const { return k_; }
 
 private:
     std::size_t index(int px, int py) const;
-    int x0_, y0_, x1_, y1_, w_, h_;
+    int x0_, y0_, x1_, y1_, w_, h_, k_;
     std::vector<double> m_, e_;
 };
 
@@ -64,7 +66,7 @@ constexpr int kMaxGrainsPerCell = 4096;
 
 // Appends the grains of cell (cx, cy) to `out`.
 void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity, const GrainRadiusLaw& radius,
-                          int cells_per_pixel, uint64_t seed, std::vector<Grain>& out);
+                          uint64_t seed, std::vector<Grain>& out);
 
 // The grains that can cover any point of [x0, x1] x [y0, y1] (input-pixel units), binned on
 // the cell grid over that rectangle: a grain is listed in every bin its bounding square meets.
@@ -72,16 +74,15 @@ void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity
 // allocating (and the kernel stops zeroing fresh pages) after its first tile.
 class GrainField {
 public:
-    void generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int cells_per_pixel, uint64_t seed,
+    // Bins are 1/bins_per_pixel wide; the grains come from the intensity's own cells.
+    void generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel, uint64_t seed,
                   double x0, double y0, double x1, double y1, bool build_bins);
 
     const std::vector<Grain>& grains() const { return grains_; }
-    // Whether the point is inside some grain. The point must lie in the rectangle.
-    bool covered(double px, double py) const {
-        const double sx = px * k_, sy = py * k_;
-        const int64_t gbx = floor_to_int(sx), gby = floor_to_int(sy);
-        const float lx = bin_local(sx, gbx), ly = bin_local(sy, gby);
-        const std::size_t b = std::size_t(gby - by0_) * nbx_ + std::size_t(gbx - bx0_);
+    // Whether the point at bin-local (lx, ly) of global bin (bx, by) is inside some grain of
+    // that bin. The bin must lie in the rectangle.
+    bool covered_in_bin(int64_t bx, int64_t by, float lx, float ly) const {
+        const std::size_t b = std::size_t(by - by0_) * nbx_ + std::size_t(bx - bx0_);
         for (uint32_t i = start_[b], e = start_[b + 1]; i < e; i++) {
             const BinnedGrain& g = binned_[i];
             if (inside_grain(lx, ly, g.x, g.y, g.r2)) return true;
@@ -89,6 +90,14 @@ public:
         return false;
     }
     double cells_per_pixel() const { return k_; }
+    // The bin grid: global coordinates of its first bin, its size, and per bin (row-major)
+    // the range [bin_start()[b], bin_start()[b + 1]) of binned_grains().
+    int64_t first_bin_x() const { return bx0_; }
+    int64_t first_bin_y() const { return by0_; }
+    int64_t bins_x() const { return nbx_; }
+    int64_t bins_y() const { return nby_; }
+    const std::vector<uint32_t>& bin_start() const { return start_; }
+    const std::vector<BinnedGrain>& binned_grains() const { return binned_; }
 
 private:
     double k_;
@@ -98,6 +107,10 @@ private:
     std::vector<uint32_t> start_;
     std::vector<BinnedGrain> binned_;
     std::vector<uint32_t> fill_;
+    struct BinRange {
+        int64_t lx, hx, ly, hy;
+    };
+    std::vector<BinRange> ranges_;
 };
 
 }  // namespace filmgrain::physical

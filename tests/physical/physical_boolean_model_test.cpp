@@ -10,6 +10,7 @@
 #include "filmgrain/error.hpp"
 #include "physical/boolean_covariance.hpp"
 #include "physical/boolean_model.hpp"
+#include "physical/monte_carlo_offsets.hpp"
 
 using namespace filmgrain;
 using namespace filmgrain::physical;

@@ -1,0 +1,49 @@
+// Per-bin coverage masks for the unit-zoom pixel-wise estimator.
+//
+// At zoom 1 sample k of pixel (x, y) lies in bin (k_c x + sx_k, k_c y + sy_k) at a bin-local
+// point L_k that does not depend on the pixel (sample_points.hpp; k_c = cells per pixel). So
+// a bin b can only ever be visited by the samples whose steps (sx_k, sy_k) are congruent to
+// b modulo k_c, at their fixed points L_k. The samples fall into k_c^2 such classes; for each
+// bin, the mask of its class's samples covered by the bin's grains is computed once, and a
+// pixel's estimate becomes N bit look-ups instead of N point-in-grains searches. The result
+// is the same test on the same float coordinates as every other estimator (inside_grain),
+// so the output is bit-identical to theirs.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "physical/grain_field.hpp"
+#include "physical/sample_points.hpp"
+
+namespace filmgrain::physical {
+
+// The optimized kernel reads whole vectors: class point lists are padded to this many floats
+// (with NaN, which no grain covers), and every mask holds at least that many bits.
+constexpr int kClassPointPad = 16;
+
+struct SampleClasses {
+    int cells_per_pixel = 1;
+    int words = 1;  // 64-bit words per bin mask
+    // Class c = (sy mod k_c) * k_c + (sx mod k_c): its points are lx/ly[begin[c], begin[c] + size[c]).
+    std::vector<uint32_t> begin, size;
+    std::vector<float> lx, ly;
+    // Per sample: its class, and the word and bit of its place in the class mask.
+    std::vector<uint32_t> sample_class, sample_word;
+    std::vector<uint8_t> sample_bit;
+};
+
+// Unit zoom only.
+SampleClasses group_samples_by_class(const SamplePoints& points);
+
+// Bit j of mask (words x 64 bits) = whether point (lx[j], ly[j]) is inside one of the n
+// grains; bits j >= m are zero. The scalar reference, and the vector kernel that must equal it.
+void coverage_mask_reference(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
+                             uint64_t* mask, int words);
+void coverage_mask_optimized(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
+                             uint64_t* mask, int words);
+
+// The masks of every bin of the field's grid (row-major, `words` per bin).
+void bin_coverage_masks(const GrainField& field, const SampleClasses& classes, bool reference,
+                        std::vector<uint64_t>& masks);
+
+}  // namespace filmgrain::physical
