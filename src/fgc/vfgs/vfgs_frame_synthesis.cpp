@@ -54,12 +54,11 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
     const int subx = c ? (1 << chroma_shift_x(f.src.format)) : 1;
     const int suby = c ? (1 << chroma_shift_y(f.src.format)) : 1;
     const int bw = 16 / subx;
-    const int n = f.blocks * bw;
     const int pw = f.src.planes[c].width;
     const bool vec = f.vector_kernels[static_cast<size_t>(c)];
 
     const In* in = f.src.planes[c].template row<const In>(py);
-    int16_t* grain = s.grain.data() + 1;  // readable at [-1] for the deblocking
+    int16_t* grain = s.grain.data();
     int16_t* scale = s.scale.data();
     if (f.setup.has_grain[static_cast<size_t>(c)]) {
         const auto [c1, c2] = overlap_weights(j, suby, first_stripe);
@@ -89,6 +88,12 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
             job.blocks = blocks + job.block_count;
             job.block_count = f.blocks - job.block_count;
             grain_row(vec, job, padded, grain + x0, scale + x0);
+            if (x0 > 0) {
+                int g[4] = {grain[x0 - 2], grain[x0 - 1], grain[x0], grain[x0 + 1]};
+                deblock_edge(g, 2);  // the edge between the two calls
+                grain[x0 - 1] = static_cast<int16_t>(g[1]);
+                grain[x0] = static_cast<int16_t>(g[2]);
+            }
         }
     } else {
         // no grain: the reference still clips the plane (blend of 0)
@@ -97,8 +102,6 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
     }
     BlendRowJob blend;
     blend.width = pw;
-    blend.padded_width = n;
-    blend.block_width = bw;
     blend.shift = f.setup.scale_shift;
     blend.bit_depth = f.src.bit_depth;
     blend_row(vec, blend, in, grain, scale, f.dst.planes[c].template row<Out>(py));

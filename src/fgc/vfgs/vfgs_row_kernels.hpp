@@ -5,10 +5,11 @@
 // proves equal on random input for every compiled target:
 //
 //  1. grain_row: per block, every sample's signed template sample picked by the sample's
-//     intensity, with the vertical overlap on the first rows of a stripe; also the
-//     sample's scale. Unscaled, undeblocked, one int16 per sample (|g| <= 143).
-//  2. blend_row: the horizontal deblocking of the block edges, the scaling and the
-//     additive blend with VFGS's clip, optionally rounded to 8 bits.
+//     intensity, with the vertical overlap on the first rows of a stripe, then the
+//     horizontal deblocking of the edges between the row's blocks; also the sample's
+//     scale. Unscaled, one int16 per sample (|g| <= 143).
+//  2. blend_row: the scaling and the additive blend with VFGS's clip, optionally
+//     rounded to 8 bits.
 #pragma once
 #include <cstdint>
 
@@ -35,7 +36,7 @@ struct GrainRowJob {
     const int8_t* pool = nullptr;
     const int8_t* pool_up = nullptr;
     const ComponentLuts* luts = nullptr;   // the component's tables (scalar kernels)
-    const IntensityRuns* runs = nullptr;   // the same as runs (vector kernels)
+    const IntensityRuns* runs = nullptr;   // the same tables as runs (vector kernels)
     const GrainBlock* blocks = nullptr;
     int block_count = 0;
     int block_width = 16;                  // 16 (luma, 4:4:4 chroma) or 8 (subsampled chroma)
@@ -44,27 +45,17 @@ struct GrainRowJob {
     bool pattern_interpolation = false;    // scalar kernels only
 };
 
-// Per-row arguments of blend_row. `grain` must be readable at [-1] and [padded_width];
-// positions padded_width - 1 and 0 are not block edges.
+// Per-row arguments of blend_row.
 struct BlendRowJob {
-    int width = 0;          // samples written
-    int padded_width = 0;   // block_count * block_width (>= width)
-    int block_width = 16;
-    int shift = 0;          // scale_shift()
-    int bit_depth = 8;      // of the input (the clip is 255 << (bit_depth - 8))
+    int width = 0;      // samples
+    int shift = 0;      // scale_shift()
+    int bit_depth = 8;  // of the input (the clip is 255 << (bit_depth - 8))
 };
 
-// The grain blend_row scales at x: deblock_edge() filters the last sample before every
-// inner block edge and the first after it, both from unfiltered neighbours, which is the
-// same [1 3 1] / 4 formula at both positions.
-inline int deblocked_grain(const BlendRowJob& job, const int16_t* grain, int x) {
-    const int phase = x % job.block_width;
-    const bool edge = (phase == 0 && x > 0) || (phase == job.block_width - 1 && x < job.padded_width - 1);
-    return edge ? (grain[x - 1] + 3 * grain[x] + grain[x + 1] + 2) >> 2 : grain[x];
-}
-
 namespace scalar {
-// `in` holds block_count * block_width samples (the caller pads the last block).
+// `in` holds block_count * block_width samples (the caller pads a last block that sticks
+// out of the row). The edges deblocked are those between the job's blocks; the caller
+// deblocks the one between two calls (deblock_edge()).
 void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale);
 void grain_row_u16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int16_t* scale);
 // `out` may be `in`.

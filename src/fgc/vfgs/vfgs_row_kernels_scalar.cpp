@@ -35,13 +35,22 @@ void grain_row(const GrainRowJob& job, const In* in, int16_t* grain, int16_t* sc
             scale[x] = lut.scale[static_cast<size_t>(inten)];
         }
     }
+    // Each edge reads two samples either side and changes the two next to it; edges are at
+    // least 8 samples apart, so filtering them one after the other reads unfiltered values.
+    for (int b = 1; b < job.block_count; ++b) {
+        int16_t* e = grain + b * bw;
+        int g[4] = {e[-2], e[-1], e[0], e[1]};
+        deblock_edge(g, 2);
+        e[-1] = static_cast<int16_t>(g[1]);
+        e[0] = static_cast<int16_t>(g[2]);
+    }
 }
 
 template <typename In, typename Out>
 void blend_row(const BlendRowJob& job, const In* in, const int16_t* grain, const int16_t* scale, Out* out,
                bool round_to_8bit) {
     for (int x = 0; x < job.width; ++x) {
-        const int g = scale_grain(scale[x], deblocked_grain(job, grain, x), job.shift);
+        const int g = scale_grain(scale[x], grain[x], job.shift);
         const int v = blend_sample(in[x], g, job.bit_depth);
         out[x] = static_cast<Out>(round_to_8bit ? to_8bit(v) : v);
     }

@@ -2,7 +2,7 @@
 // serial scalar reference add_grain_frame(): random parameter sets, formats, sizes, bit
 // depths, seeds and gains, two frames in a row (the LFSR runs on across frames), every
 // kernel choice and thread counts 1, 2, 3 and 7; and the VersatileFilmGrain goldens on
-// several threads.
+// 1, 2, 3 and 7 threads. Both for every vector target this CPU runs (each forced in turn).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -15,6 +15,7 @@
 #include "fgc/vfgs/vfgs_frame_synthesis.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "filmgrain/error.hpp"
+#include "forced_simd_target.hpp"
 #include "metadata/fgc_json.hpp"
 
 using namespace filmgrain;
@@ -101,10 +102,11 @@ bool same_bytes(const FrameBuffer& a, const FrameBuffer& b) {
     return a.byte_size() == b.byte_size() && std::memcmp(a.bytes(), b.bytes(), a.byte_size()) == 0;
 }
 
+class VfgsFrameSynthesis : public test_support::ForcedSimdTarget<2025u> {};
+
 }  // namespace
 
-TEST(VfgsFrameSynthesis, EqualsTheSerialReferenceForEveryThreadCountAndKernel) {
-    std::mt19937 rng(2025);
+TEST_P(VfgsFrameSynthesis, EqualsTheSerialReferenceForEveryThreadCountAndKernel) {
     FrameSynthesis engines[] = {FrameSynthesis(1, Kernels::kOptimized), FrameSynthesis(2, Kernels::kOptimized),
                                 FrameSynthesis(3, Kernels::kOptimized), FrameSynthesis(7, Kernels::kOptimized),
                                 FrameSynthesis(1, Kernels::kReference), FrameSynthesis(3, Kernels::kReference)};
@@ -152,8 +154,8 @@ TEST(VfgsFrameSynthesis, EqualsTheSerialReferenceForEveryThreadCountAndKernel) {
 }
 
 // The goldens of VersatileFilmGrain through the frame synthesis on several threads (the
-// conformance suite runs them through vfgs::Synthesizer, one thread).
-TEST(VfgsFrameSynthesis, GoldensOnSeveralThreads) {
+// conformance suite runs them through vfgs::Synthesizer, one thread, best target).
+TEST_P(VfgsFrameSynthesis, GoldensOnSeveralThreads) {
     int cases = 0;
     for (const std::string& name : test_support::list_cases("vfgs-")) {
         if (name.rfind("vfgs-afgs1-", 0) == 0) continue;
@@ -163,7 +165,7 @@ TEST(VfgsFrameSynthesis, GoldensOnSeveralThreads) {
         opt.gain_percent = c.json.value("vfgs_gain_percent", 100);
         if (c.output_format.bit_depth != c.format.bit_depth) opt.output_bit_depth = c.output_format.bit_depth;
         const uint32_t start = opt.seed ? lfsr_state_from_seed(*opt.seed) : kDefaultLfsrState;
-        for (int threads : {2, 3, 7}) {
+        for (int threads : {1, 2, 3, 7}) {
             FrameSynthesis engine(threads);
             LfsrCursor cursor{start, start};
             TemplateBank bank;
@@ -186,3 +188,6 @@ TEST(VfgsFrameSynthesis, GoldensOnSeveralThreads) {
     }
     EXPECT_GE(cases, 10);
 }
+
+INSTANTIATE_TEST_SUITE_P(Targets, VfgsFrameSynthesis, ::testing::ValuesIn(filmgrain::simd::available_targets()),
+                         [](const ::testing::TestParamInfo<filmgrain::simd::Target>& i) { return i.param.name; });

@@ -26,42 +26,67 @@ HWY_INLINE hn::Vec<D> Intensity(D d, const uint16_t* in, int shift) {
     return hn::BitCast(d, hn::Min(hn::ShiftRightSame(hn::LoadU(du, in), shift), hn::Set(du, uint16_t{255})));
 }
 
+// One boundary of the intensity runs, as the vector loop uses it.
+struct RunStep {
+    int16_t last_below = 0;      // run start - 1: lanes above it take this run
+    int32_t tmpl_offset = 0;     // template index * kTemplateBytes
+    int16_t scale = 0;
+    bool new_tmpl = false, new_scale = false;  // what changes at this boundary
+};
+
 // The grain of `block_count` blocks of one row. Lanes hold int16: the template samples
 // (|t| <= 127) times the overlap weights (<= 24) sum to at most 6112 in magnitude.
 // D has block_width lanes or a divisor of it (a narrower target runs a block in parts).
-template <bool kOverlap, class D, typename In>
-HWY_INLINE void GrainBlocks(D d, const GrainRowJob& job, const In* in, int16_t* grain, int16_t* scale) {
+// kRuns: the number of runs when known at compile time (the common 1..4), else 0.
+template <bool kOverlap, int kRuns, class D, typename In>
+HWY_NOINLINE void GrainBlocks(D d, const GrainRowJob& job, const In* in, int16_t* grain, int16_t* scale) {
     const hn::Rebind<int8_t, D> d8;
     const int n = static_cast<int>(hn::Lanes(d));
     const IntensityRuns& runs = *job.runs;
-    const IntensityRun& first = runs.run[0];
+    const int count = kRuns ? kRuns : runs.count;
+    // Local copies: the compiler keeps them in registers across the blocks (the grain
+    // stores cannot reach them).
+    RunStep steps[kMaxVectorRuns];
+    for (int r = 0; r < count; ++r) {
+        const IntensityRun& run = runs.run[r];
+        steps[r].last_below = static_cast<int16_t>(run.start - 1);
+        steps[r].tmpl_offset = run.tmpl * kTemplateBytes;
+        steps[r].scale = static_cast<int16_t>(run.scale);
+        steps[r].new_tmpl = r > 0 && run.tmpl != runs.run[r - 1].tmpl;
+        steps[r].new_scale = r > 0 && run.scale != runs.run[r - 1].scale;
+    }
+    // The job's fields in locals: the vector stores may alias anything, and would make
+    // the compiler reload them for every block.
+    const int8_t* const pool = job.pool;
+    const int8_t* const pool_up = job.pool_up;
+    const GrainBlock* const blocks = job.blocks;
+    const int block_count = job.block_count, block_width = job.block_width, intensity_shift = job.intensity_shift;
+    const int c1 = job.overlap_c1, c2 = job.overlap_c2;
     const auto round = hn::Set(d, int16_t{16});
-    for (int b = 0; b < job.block_count; ++b) {
-        const GrainBlock& blk = job.blocks[b];
-        const int8_t* cur = job.pool + blk.offset;
-        const int8_t* up = job.pool_up + blk.offset_up;
-        const auto sign = hn::Set(d, static_cast<int16_t>(kOverlap ? blk.sign * job.overlap_c1 : blk.sign));
-        const auto sign_up = hn::Set(d, static_cast<int16_t>(blk.sign_up * job.overlap_c2));
-        for (int i = 0; i < job.block_width; i += n) {
-            const int x = b * job.block_width + i;
+    for (int b = 0; b < block_count; ++b) {
+        const GrainBlock blk = blocks[b];
+        const int8_t* cur = pool + blk.offset;
+        const int8_t* up = pool_up + blk.offset_up;
+        const auto sign = hn::Set(d, static_cast<int16_t>(kOverlap ? blk.sign * c1 : blk.sign));
+        const auto sign_up = hn::Set(d, static_cast<int16_t>(blk.sign_up * c2));
+        for (int i = 0; i < block_width; i += n) {
+            const int x = b * block_width + i;
             // The reference's two look-ups, as the last run starting at or below the intensity.
-            auto g = hn::PromoteTo(d, hn::LoadU(d8, cur + first.tmpl * kTemplateBytes + i));
-            auto gu = kOverlap ? hn::PromoteTo(d, hn::LoadU(d8, up + first.tmpl * kTemplateBytes + i)) : hn::Zero(d);
-            auto sc = hn::Set(d, static_cast<int16_t>(first.scale));
-            if (runs.count > 1) {
-                const auto inten = Intensity(d, in + x, job.intensity_shift);
-                for (int r = 1; r < runs.count; ++r) {
-                    const IntensityRun& run = runs.run[r];
-                    const IntensityRun& prev = runs.run[r - 1];
-                    // all ones where inten >= run.start (>= 1): a vector, not a mask register,
+            auto g = hn::PromoteTo(d, hn::LoadU(d8, cur + steps[0].tmpl_offset + i));
+            auto gu = kOverlap ? hn::PromoteTo(d, hn::LoadU(d8, up + steps[0].tmpl_offset + i)) : hn::Zero(d);
+            auto sc = hn::Set(d, steps[0].scale);
+            if (count > 1) {
+                const auto inten = Intensity(d, in + x, intensity_shift);
+                for (int r = 1; r < count; ++r) {
+                    const RunStep& st = steps[r];
+                    // all ones where inten >= run start: a vector, not a mask register,
                     // because GCC 12 fails on AVX-512 16-bit mask blends here ("could not split insn")
-                    const auto m = hn::ShiftRight<15>(hn::Sub(hn::Set(d, static_cast<int16_t>(run.start - 1)), inten));
-                    if (run.tmpl != prev.tmpl) {
-                        const int32_t t = run.tmpl * kTemplateBytes + i;
-                        g = hn::IfVecThenElse(m, hn::PromoteTo(d, hn::LoadU(d8, cur + t)), g);
-                        if (kOverlap) gu = hn::IfVecThenElse(m, hn::PromoteTo(d, hn::LoadU(d8, up + t)), gu);
+                    const auto m = hn::ShiftRight<15>(hn::Sub(hn::Set(d, st.last_below), inten));
+                    if (st.new_tmpl) {
+                        g = hn::IfVecThenElse(m, hn::PromoteTo(d, hn::LoadU(d8, cur + st.tmpl_offset + i)), g);
+                        if (kOverlap) gu = hn::IfVecThenElse(m, hn::PromoteTo(d, hn::LoadU(d8, up + st.tmpl_offset + i)), gu);
                     }
-                    if (run.scale != prev.scale) sc = hn::IfVecThenElse(m, hn::Set(d, static_cast<int16_t>(run.scale)), sc);
+                    if (st.new_scale) sc = hn::IfVecThenElse(m, hn::Set(d, st.scale), sc);
                 }
             }
             // overlap_blend(g * sign, gu * sign_up, c1, c2) with the signs folded into the weights
@@ -71,6 +96,25 @@ HWY_INLINE void GrainBlocks(D d, const GrainRowJob& job, const In* in, int16_t* 
             hn::StoreU(sc, d, scale + x);
         }
     }
+// deblock_edge() at every inner block edge: [1 3 1] / 4 on the last sample before the
+    // edge and the first after it, from unfiltered values (edges are >= 8 samples apart).
+    for (int b = 1; b < block_count; ++b) {
+        int16_t* e = grain + b * block_width;
+        const int l1 = e[-2], l0 = e[-1], r0 = e[0], r1 = e[1];
+        e[-1] = static_cast<int16_t>((l1 + 3 * l0 + r0 + 2) >> 2);
+        e[0] = static_cast<int16_t>((l0 + 3 * r0 + r1 + 2) >> 2);
+    }
+}
+
+template <bool kOverlap, class D, typename In>
+HWY_INLINE void GrainBlocksForRuns(D d, const GrainRowJob& job, const In* in, int16_t* grain, int16_t* scale) {
+    switch (job.runs->count) {
+        case 1: return GrainBlocks<kOverlap, 1>(d, job, in, grain, scale);
+        case 2: return GrainBlocks<kOverlap, 2>(d, job, in, grain, scale);
+        case 3: return GrainBlocks<kOverlap, 3>(d, job, in, grain, scale);
+        case 4: return GrainBlocks<kOverlap, 4>(d, job, in, grain, scale);
+        default: return GrainBlocks<kOverlap, 0>(d, job, in, grain, scale);
+    }
 }
 
 template <typename In>
@@ -78,12 +122,12 @@ HWY_INLINE void GrainRow(const GrainRowJob& job, const In* in, int16_t* grain, i
     const bool overlap = job.overlap_c1 != 0;
     if (job.block_width == 16) {
         const hn::CappedTag<int16_t, 16> d;
-        if (overlap) GrainBlocks<true>(d, job, in, grain, scale);
-        else GrainBlocks<false>(d, job, in, grain, scale);
+        if (overlap) GrainBlocksForRuns<true>(d, job, in, grain, scale);
+        else GrainBlocksForRuns<false>(d, job, in, grain, scale);
     } else {
         const hn::CappedTag<int16_t, 8> d;
-        if (overlap) GrainBlocks<true>(d, job, in, grain, scale);
-        else GrainBlocks<false>(d, job, in, grain, scale);
+        if (overlap) GrainBlocksForRuns<true>(d, job, in, grain, scale);
+        else GrainBlocksForRuns<false>(d, job, in, grain, scale);
     }
 }
 
@@ -94,8 +138,8 @@ void GrainRowU16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int
     GrainRow(job, in, grain, scale);
 }
 
-// Deblocking, scaling and blending in int32 lanes: the scale (<= 255) times the deblocked
-// grain (|g| <= 143) can pass 32767, and 10-bit input may hold any 16-bit value.
+// Scaling and blending in int32 lanes: the scale (<= 255) times the grain (|g| <= 143)
+// can pass 32767, and 10-bit input may hold any 16-bit value.
 template <bool kTo8Bit, typename In, typename Out>
 HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* grain, const int16_t* scale, Out* out) {
     const hn::ScalableTag<int32_t> d;
@@ -104,23 +148,12 @@ HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* gr
     const hn::Rebind<Out, decltype(d)> dout;
     const int n = static_cast<int>(hn::Lanes(d));
     const auto zero = hn::Zero(d);
-    const auto phase_mask = hn::Set(d, job.block_width - 1);  // block widths are powers of two
-    const auto last_inner = hn::Set(d, job.padded_width - 1);
     const auto two = hn::Set(d, 2);
     const auto round = hn::Set(d, 1 << (job.shift - 1));
     const auto hi = hn::Set(d, 255 << (job.bit_depth - 8));
-    auto idx = hn::Iota(d, 0);
-    const auto step = hn::Set(d, n);
     int x = 0;
-    for (; x + n <= job.width; x += n, idx = hn::Add(idx, step)) {
-        const auto phase = hn::And(idx, phase_mask);
-        const auto at_edge = hn::And(hn::Or(hn::Eq(phase, zero), hn::Eq(phase, phase_mask)),
-                                     hn::And(hn::Ne(idx, zero), hn::Ne(idx, last_inner)));
-        const auto gl = hn::PromoteTo(d, hn::LoadU(d16, grain + x - 1));
-        const auto gc = hn::PromoteTo(d, hn::LoadU(d16, grain + x));
-        const auto gr = hn::PromoteTo(d, hn::LoadU(d16, grain + x + 1));
-        const auto filtered = hn::ShiftRight<2>(hn::Add(hn::Add(gl, gr), hn::Add(hn::Add(gc, hn::ShiftLeft<1>(gc)), two)));
-        const auto g = hn::IfThenElse(at_edge, filtered, gc);
+    for (; x + n <= job.width; x += n) {
+        const auto g = hn::PromoteTo(d, hn::LoadU(d16, grain + x));
         const auto sc = hn::PromoteTo(d, hn::LoadU(d16, scale + x));
         const auto scaled = hn::ShiftRightSame(hn::Add(hn::Mul(sc, g), round), job.shift);
         auto v = hn::Min(hn::Max(hn::Add(hn::PromoteTo(d, hn::LoadU(din, in + x)), scaled), zero), hi);
@@ -128,7 +161,7 @@ HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* gr
         hn::StoreU(hn::DemoteTo(dout, v), dout, out + x);
     }
     for (; x < job.width; ++x) {
-        const int v = blend_sample(in[x], scale_grain(scale[x], deblocked_grain(job, grain, x), job.shift), job.bit_depth);
+        const int v = blend_sample(in[x], scale_grain(scale[x], grain[x], job.shift), job.bit_depth);
         out[x] = static_cast<Out>(kTo8Bit ? to_8bit(v) : v);
     }
 }
