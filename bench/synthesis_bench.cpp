@@ -17,6 +17,9 @@
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
 #include "fgc/fgc_stream_synthesis.hpp"
+#include "fgc/vfgs/vfgs_frame_setup.hpp"
+#include "fgc/vfgs/vfgs_frame_synthesis.hpp"
+#include "fgc/vfgs/vfgs_random.hpp"
 
 using namespace filmgrain;
 
@@ -54,6 +57,23 @@ void BM_Fgc(benchmark::State& state) {
     int poc = 0;
     for (auto _ : state) {
         s.apply(in.view(), out.view(), FgcPictureIds{poc++ & 255, 0});
+        benchmark::DoNotOptimize(out.bytes());
+    }
+    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// args: width, height, bit depth, threads, optimized (0/1). The vfgs flavour (VFGS-exact)
+// through its frame synthesis, which takes a thread count (vfgs::Options has none yet).
+// VFGS's scale is 8 bits at every bit depth, so the 8-bit parameter set serves both.
+void BM_Vfgs(benchmark::State& state) {
+    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
+    vfgs::TemplateBank bank;
+    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
+    const vfgs::SynthesisSetup setup = vfgs::prepare_setup(fgc_params(8), in.format().chroma, bd, vfgs::Options{}, bank);
+    vfgs::FrameSynthesis s(int(state.range(3)), state.range(4) ? vfgs::Kernels::kOptimized : vfgs::Kernels::kReference);
+    vfgs::LfsrCursor cursor{vfgs::kDefaultLfsrState, vfgs::kDefaultLfsrState};
+    for (auto _ : state) {
+        s.apply(in.view(), out.view(), setup, cursor);
         benchmark::DoNotOptimize(out.bytes());
     }
     state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
@@ -108,6 +128,7 @@ void sizes(benchmark::internal::Benchmark* b, bool flavours) {
 
 BENCHMARK(BM_Fgc)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, true); });
 BENCHMARK(BM_Av1)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, false); });
+BENCHMARK(BM_Vfgs)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, false); });
 BENCHMARK(BM_FrameCopy)
     ->ArgsProduct({{1280}, {720}, {8, 10}})
     ->ArgsProduct({{1920}, {1080}, {8, 10}})

@@ -68,6 +68,9 @@ struct LfsrCursor {
 
 // Adds grain to one frame. `src` and `dst` have the same size and format;
 // dst.bit_depth is src.bit_depth or 8 (from 10). dst may alias src.
+// The serial scalar reference, in the reference's order (stripe after stripe, the LFSR
+// stepped block by block). The synthesis runs FrameSynthesis (vfgs_frame_synthesis.hpp),
+// which the tests hold to this function's output.
 void add_grain_frame(const FrameView& src, const FrameView& dst, const SynthesisSetup& setup, LfsrCursor& cursor);
 
 }  // namespace filmgrain::vfgs

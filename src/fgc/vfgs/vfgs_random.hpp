@@ -38,15 +38,47 @@ struct BlockOffset {
     int oy = 0;    // vertical offset into the template
 };
 
+namespace detail {
+// 10-bit field mapped onto `bins` bins by a multiply and shift (12 or 13 bins
+// keep the distribution within ~1% of uniform, as the reference notes).
+constexpr int bin_of(uint32_t field10, uint32_t bins) { return static_cast<int>((field10 * bins) >> 10); }
+// 4 / sub for a subsampling factor sub of 1 or 2, without a division: the synthesis
+// takes block offsets for every block of every stripe.
+constexpr int offset_unit(int sub) { return 4 >> (sub - 1); }
+}  // namespace detail
+
 // Luma: sign = bit 31; ox = (R[9:0]*13 >> 10)*4 (0..48); oy = (R[23:14]*12 >> 10)*4 (0..44).
-BlockOffset luma_block_offset(uint32_t r);
+inline BlockOffset luma_block_offset(uint32_t r) {
+    BlockOffset o;
+    o.sign = ((r >> 31) & 1u) ? -1 : 1;
+    o.ox = detail::bin_of(r & 0x3FFu, 13) * 4;
+    o.oy = detail::bin_of((r >> 14) & 0x3FFu, 12) * 4;
+    return o;
+}
 // Cb: sign = bit 2; ox from R[19:10], oy from R[31:24] with R[1:0] as its two MSBs;
-// offsets are multiplied by 4/sub instead of 4.
-BlockOffset cb_block_offset(uint32_t r, int subx, int suby);
+// offsets are multiplied by 4/sub instead of 4 (sub = 1 or 2).
+inline BlockOffset cb_block_offset(uint32_t r, int subx, int suby) {
+    BlockOffset o;
+    o.sign = ((r >> 2) & 1u) ? -1 : 1;
+    o.ox = detail::bin_of((r >> 10) & 0x3FFu, 13) * detail::offset_unit(subx);
+    const uint32_t fy = ((r >> 24) & 0xFFu) | ((r << 8) & 0x300u);
+    o.oy = detail::bin_of(fy, 12) * detail::offset_unit(suby);
+    return o;
+}
 // Cr: sign = bit 15; ox from R[29:20], oy from R[13:4].
-BlockOffset cr_block_offset(uint32_t r, int subx, int suby);
+inline BlockOffset cr_block_offset(uint32_t r, int subx, int suby) {
+    BlockOffset o;
+    o.sign = ((r >> 15) & 1u) ? -1 : 1;
+    o.ox = detail::bin_of((r >> 20) & 0x3FFu, 13) * detail::offset_unit(subx);
+    o.oy = detail::bin_of((r >> 4) & 0x3FFu, 12) * detail::offset_unit(suby);
+    return o;
+}
 // Dispatch on component index 0/1/2.
-BlockOffset block_offset(int component, uint32_t r, int subx, int suby);
+inline BlockOffset block_offset(int component, uint32_t r, int subx, int suby) {
+    if (component == 0) return luma_block_offset(r);
+    if (component == 1) return cb_block_offset(r, subx, suby);
+    return cr_block_offset(r, subx, suby);
+}
 
 // Block grid of the reference: 16x16 luma blocks, so ceil(width/16) blocks per
 // stripe and ceil(height/16) stripes per frame.

@@ -5,6 +5,8 @@
 #include <string>
 
 #include "core/plane_layout.hpp"
+#include "fgc/vfgs/vfgs_frame_setup.hpp"
+#include "fgc/vfgs/vfgs_frame_synthesis.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_picture_synthesis.hpp"
@@ -23,22 +25,12 @@ struct Synthesizer::Impl {
     int prepared_bit_depth = 0;
     TemplateBank bank;  // persists across parameter sets, as VFGS's template memory
     SynthesisSetup setup;
+    // One stripe worker: the public Options have no thread count yet (the stripes can run on
+    // any number of threads with the same output, see FrameSynthesis).
+    FrameSynthesis frames{1, Kernels::kOptimized};
 
     void prepare(ChromaFormat format, int bit_depth) {
-        const FgcParams& p = *params;
-        validate_params_for_format(p, format, bit_depth);
-        const ResolvedParams r = resolve_params(p, format, options.gain_percent);
-        const TemplatePools pools = select_template_pools(r);
-        build_templates(r, pools, bank);
-        setup = SynthesisSetup{};
-        setup.bank = &bank;
-        setup.luts = build_luts(r, pools);
-        if (options.pattern_interpolation) add_interpolation_ramps(r, setup.luts);
-        setup.pattern_interpolation = options.pattern_interpolation;
-        setup.scale_shift = scale_shift(r, bit_depth);
-        for (int c = 0; c < 3; ++c)
-            setup.has_grain[c] = std::any_of(setup.luts[c].scale.begin(), setup.luts[c].scale.end(),
-                                             [](uint8_t s) { return s != 0; });
+        setup = prepare_setup(*params, format, bit_depth, options, bank);
         prepared = true;
         prepared_format = format;
         prepared_bit_depth = bit_depth;
@@ -144,7 +136,7 @@ void Synthesizer::apply(const FrameView& src, const FrameView& dst) {
     }
     if (!m.prepared || m.prepared_format != src.format || m.prepared_bit_depth != src.bit_depth)
         m.prepare(src.format, src.bit_depth);
-    add_grain_frame(src, dst, m.setup, m.cursor);
+    m.frames.apply(src, dst, m.setup, m.cursor);
 }
 
 }  // namespace filmgrain::vfgs

@@ -1,0 +1,197 @@
+// One frame of VFGS synthesis on stripe threads: see vfgs_frame_synthesis.hpp.
+#include "fgc/vfgs/vfgs_frame_synthesis.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/thread_pool.hpp"
+#include "fgc/vfgs/vfgs_random.hpp"
+#include "fgc/vfgs/vfgs_stripe_states.hpp"
+
+namespace filmgrain::vfgs {
+
+static_assert(sizeof(TemplateBank::luma) == sizeof(int8_t) * kTemplateBytes * kMaxTemplates,
+              "the kernels step from one template of a pool to the next by kTemplateBytes");
+
+namespace {
+
+// What every stripe of the frame reads.
+struct FrameJob {
+    const FrameView& src;
+    const FrameView& dst;
+    const SynthesisSetup& setup;
+    std::array<IntensityRuns, 3> runs;
+    std::array<bool, 3> vector_kernels{};
+    int blocks = 0;  // per stripe
+};
+
+void grain_row(bool vec, const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale) {
+    vec ? simd::grain_row_u8(job, in, grain, scale) : scalar::grain_row_u8(job, in, grain, scale);
+}
+void grain_row(bool vec, const GrainRowJob& job, const uint16_t* in, int16_t* grain, int16_t* scale) {
+    vec ? simd::grain_row_u16(job, in, grain, scale) : scalar::grain_row_u16(job, in, grain, scale);
+}
+void blend_row(bool vec, const BlendRowJob& job, const uint8_t* in, const int16_t* g, const int16_t* s, uint8_t* out) {
+    vec ? simd::blend_row_u8(job, in, g, s, out) : scalar::blend_row_u8(job, in, g, s, out);
+}
+void blend_row(bool vec, const BlendRowJob& job, const uint16_t* in, const int16_t* g, const int16_t* s,
+               uint16_t* out) {
+    vec ? simd::blend_row_u16(job, in, g, s, out) : scalar::blend_row_u16(job, in, g, s, out);
+}
+void blend_row(bool vec, const BlendRowJob& job, const uint16_t* in, const int16_t* g, const int16_t* s,
+               uint8_t* out) {
+    vec ? simd::blend_row_u16_to_u8(job, in, g, s, out) : scalar::blend_row_u16_to_u8(job, in, g, s, out);
+}
+
+const int8_t* pool_base(const SynthesisSetup& st, int c) {
+    return c ? &st.bank->chroma[0][0][0] : &st.bank->luma[0][0][0];
+}
+
+// Row `py` of plane `c`; `j` is the luma row inside the block stripe.
+template <typename In, typename Out>
+void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, const GrainBlock* blocks,
+                    FrameSynthesis::Scratch& s) {
+    const int subx = c ? (1 << chroma_shift_x(f.src.format)) : 1;
+    const int suby = c ? (1 << chroma_shift_y(f.src.format)) : 1;
+    const int bw = 16 / subx;
+    const int pw = f.src.planes[c].width;
+    const bool vec = f.vector_kernels[static_cast<size_t>(c)];
+
+    const In* in = f.src.planes[c].template row<const In>(py);
+    int16_t* grain = s.grain.data();
+    int16_t* scale = s.scale.data();
+    if (f.setup.has_grain[static_cast<size_t>(c)]) {
+        const auto [c1, c2] = overlap_weights(j, suby, first_stripe);
+        const int8_t* base = pool_base(f.setup, c);
+        GrainRowJob job;
+        job.pool = base + (j / suby) * kTemplatePitch;
+        job.pool_up = base + ((16 + j) / suby) * kTemplatePitch;  // the block above continues below its 16 rows
+        job.luts = &f.setup.luts[static_cast<size_t>(c)];
+        job.runs = &f.runs[static_cast<size_t>(c)];
+        job.blocks = blocks;
+        job.block_count = pw / bw;  // the blocks inside the row, read in place
+        job.block_width = bw;
+        job.overlap_c1 = c1;
+        job.overlap_c2 = c2;
+        job.intensity_shift = f.src.bit_depth - 8;
+        job.pattern_interpolation = f.setup.pattern_interpolation;
+        grain_row(vec, job, in, grain, scale);
+        if (job.block_count < f.blocks) {
+            // A last block that sticks out of the row. There the reference reads its
+            // (uninitialised) stride padding; that only selects templates for grain that is
+            // never written, except when the block holds a single sample: then the
+            // deblocking of the last edge reads it. The last sample is replicated there.
+            const int x0 = job.block_count * bw;
+            In* padded = reinterpret_cast<In*>(s.in.data());
+            std::copy(in + x0, in + pw, padded);
+            std::fill(padded + (pw - x0), padded + bw, in[pw - 1]);
+            job.blocks = blocks + job.block_count;
+            job.block_count = f.blocks - job.block_count;
+            grain_row(vec, job, padded, grain + x0, scale + x0);
+            if (x0 > 0) {
+                int g[4] = {grain[x0 - 2], grain[x0 - 1], grain[x0], grain[x0 + 1]};
+                deblock_edge(g, 2);  // the edge between the two calls
+                grain[x0 - 1] = static_cast<int16_t>(g[1]);
+                grain[x0] = static_cast<int16_t>(g[2]);
+            }
+        }
+    } else {
+        // no grain: the reference still clips the plane (blend of 0)
+        std::fill(s.grain.begin(), s.grain.end(), int16_t{0});
+        std::fill(s.scale.begin(), s.scale.end(), int16_t{0});
+    }
+    BlendRowJob blend;
+    blend.width = pw;
+    blend.shift = f.setup.scale_shift;
+    blend.bit_depth = f.src.bit_depth;
+    blend_row(vec, blend, in, grain, scale, f.dst.planes[c].template row<Out>(py));
+}
+
+template <typename In, typename Out>
+void synthesize_stripe(const FrameJob& f, int k, uint32_t first_state, uint32_t first_state_up,
+                       FrameSynthesis::Scratch& s) {
+    const int nb = f.blocks;
+    const int planes = f.src.plane_count();
+    const bool first_stripe = k == 0;
+    fill_block_states(first_state, nb, s.states_cur.data());
+    if (!first_stripe) fill_block_states(first_state_up, nb, s.states_up.data());
+    for (int c = 0; c < planes; ++c) {
+        if (!f.setup.has_grain[static_cast<size_t>(c)]) continue;
+        const int subx = c ? (1 << chroma_shift_x(f.src.format)) : 1;
+        const int suby = c ? (1 << chroma_shift_y(f.src.format)) : 1;
+        GrainBlock* blocks = s.blocks.data() + static_cast<size_t>(c) * static_cast<size_t>(nb);
+        for (int b = 0; b < nb; ++b) {
+            const BlockOffset o = block_offset(c, s.states_cur[static_cast<size_t>(b)], subx, suby);
+            GrainBlock& g = blocks[b];
+            g.offset = o.oy * kTemplatePitch + o.ox;
+            g.sign = o.sign;
+            if (!first_stripe) {
+                const BlockOffset u = block_offset(c, s.states_up[static_cast<size_t>(b)], subx, suby);
+                g.offset_up = u.oy * kTemplatePitch + u.ox;
+                g.sign_up = u.sign;
+            }
+        }
+    }
+    const int suby_c = 1 << chroma_shift_y(f.src.format);
+    const int y_end = std::min(16 * (k + 1), f.src.height);
+    for (int y = 16 * k; y < y_end; ++y) {
+        const int j = y - 16 * k;
+        synthesize_row<In, Out>(f, 0, y, j, first_stripe, s.blocks.data(), s);
+        if (planes > 1 && y % suby_c == 0)
+            for (int c = 1; c < planes; ++c)
+                synthesize_row<In, Out>(f, c, y / suby_c, j, first_stripe,
+                                        s.blocks.data() + static_cast<size_t>(c) * static_cast<size_t>(nb), s);
+    }
+}
+
+}  // namespace
+
+FrameSynthesis::FrameSynthesis(int threads, Kernels kernels)
+    : pool_(std::make_unique<ThreadPool>(threads)), kernels_(kernels) {
+    scratch_.resize(static_cast<size_t>(pool_->size()));
+}
+
+FrameSynthesis::~FrameSynthesis() = default;
+
+int FrameSynthesis::threads() const { return pool_->size(); }
+
+void FrameSynthesis::apply(const FrameView& src, const FrameView& dst, const SynthesisSetup& setup, LfsrCursor& cursor) {
+    const int nb = blocks_per_stripe(src.width);
+    const int ns = stripes_per_frame(src.height);
+    FrameJob f{src, dst, setup, {}, {}, nb};
+    for (size_t c = 0; c < 3; ++c) {
+        f.runs[c] = intensity_runs(setup.luts[c]);
+        f.vector_kernels[c] = kernels_ == Kernels::kOptimized && !setup.pattern_interpolation &&
+                              f.runs[c].count <= kMaxVectorRuns;
+    }
+    plan_stripe_states(cursor, ns, LfsrJump(static_cast<uint64_t>(nb)), stripe_starts_);
+
+    // Every worker's buffers are sized here, on the calling thread: a worker that got no
+    // stripe in the first frames cannot allocate later.
+    const size_t row = static_cast<size_t>(nb) * 16;
+    for (Scratch& s : scratch_) {
+        s.states_cur.resize(static_cast<size_t>(nb));
+        s.states_up.resize(static_cast<size_t>(nb));
+        s.blocks.resize(3 * static_cast<size_t>(nb));
+        s.in.resize(row);
+        s.grain.resize(row + 2);
+        s.scale.resize(row);
+    }
+
+    // Runs of consecutive stripes per task, as FgcPictureSynthesis hands them out: eight
+    // runs per thread keep the threads' shares close when one of them is held up.
+    const int runs = std::min(ns, pool_->size() == 1 ? 1 : pool_->size() * 8);
+    pool_->parallel_for(runs, [&](int run, int worker) {
+        const int k0 = static_cast<int>(int64_t(ns) * run / runs);
+        const int k1 = static_cast<int>(int64_t(ns) * (run + 1) / runs);
+        Scratch& s = scratch_[static_cast<size_t>(worker)];
+        for (int k = k0; k < k1; ++k) {
+            const uint32_t cur = stripe_starts_[static_cast<size_t>(k) + 1], up = stripe_starts_[static_cast<size_t>(k)];
+            if (src.bit_depth == 8) synthesize_stripe<uint8_t, uint8_t>(f, k, cur, up, s);
+            else if (dst.bit_depth == 8) synthesize_stripe<uint16_t, uint8_t>(f, k, cur, up, s);
+            else synthesize_stripe<uint16_t, uint16_t>(f, k, cur, up, s);
+        }
+    });
+}
+
+}  // namespace filmgrain::vfgs

@@ -1,0 +1,81 @@
+// The per-row work of the VFGS synthesis, split in two kernels, each with a scalar
+// reference (namespace vfgs::scalar, vfgs_row_kernels_scalar.cpp, written from the
+// per-sample helpers of vfgs_picture_synthesis.hpp) and a Highway twin (vfgs::simd,
+// simd/vfgs_row_kernels_hwy.cpp) that tests/fgc/vfgs/vfgs_simd_equivalence_test.cpp
+// proves equal on random input for every compiled target:
+//
+//  1. grain_row: per block, every sample's signed template sample picked by the sample's
+//     intensity, with the vertical overlap on the first rows of a stripe, then the
+//     horizontal deblocking of the edges between the row's blocks; also the sample's
+//     scale. Unscaled, one int16 per sample (|g| <= 143).
+//  2. blend_row: the scaling and the additive blend with VFGS's clip, optionally
+//     rounded to 8 bits.
+#pragma once
+#include <cstdint>
+
+#include "fgc/vfgs/vfgs_intensity_runs.hpp"
+
+namespace filmgrain::vfgs {
+
+inline constexpr int kTemplatePitch = 64;                              // template row length
+inline constexpr int kTemplateBytes = kTemplatePitch * kTemplatePitch;  // one GrainTemplate
+
+// One block of a block stripe: where its part of the template starts (oy * 64 + ox, the
+// same in every template of the pool) and its sign; the same for the block above, which
+// the overlap rows blend in. The row inside the block is the job's (pool, pool_up).
+struct GrainBlock {
+    int32_t offset = 0;
+    int32_t offset_up = 0;
+    int32_t sign = 1;
+    int32_t sign_up = 1;
+};
+
+struct GrainRowJob {
+    // template 0 of the component's pool advanced to this row's template row; template t is
+    // kTemplateBytes further per index. pool_up: the same for the block above.
+    const int8_t* pool = nullptr;
+    const int8_t* pool_up = nullptr;
+    const ComponentLuts* luts = nullptr;   // the component's tables (scalar kernels)
+    const IntensityRuns* runs = nullptr;   // the same tables as runs (vector kernels)
+    const GrainBlock* blocks = nullptr;
+    int block_count = 0;
+    int block_width = 16;                  // 16 (luma, 4:4:4 chroma) or 8 (subsampled chroma)
+    int overlap_c1 = 0, overlap_c2 = 0;    // overlap_weights(); (0, 0) = no overlap
+    int intensity_shift = 0;               // bit depth - 8
+    bool pattern_interpolation = false;    // scalar kernels only
+};
+
+// Per-row arguments of blend_row.
+struct BlendRowJob {
+    int width = 0;      // samples
+    int shift = 0;      // scale_shift()
+    int bit_depth = 8;  // of the input (the clip is 255 << (bit_depth - 8))
+};
+
+namespace scalar {
+// `in` holds block_count * block_width samples (the caller pads a last block that sticks
+// out of the row). The edges deblocked are those between the job's blocks; the caller
+// deblocks the one between two calls (deblock_edge()).
+void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale);
+void grain_row_u16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int16_t* scale);
+// `out` may be `in`.
+void blend_row_u8(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale, uint8_t* out);
+void blend_row_u16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
+                   uint16_t* out);
+// --outdepth 8 from 10 bits
+void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
+                         uint8_t* out);
+}  // namespace scalar
+
+namespace simd {
+// Same contracts; job.runs->count <= kMaxVectorRuns, no pattern interpolation.
+void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale);
+void grain_row_u16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int16_t* scale);
+void blend_row_u8(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale, uint8_t* out);
+void blend_row_u16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
+                   uint16_t* out);
+void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
+                         uint8_t* out);
+}  // namespace simd
+
+}  // namespace filmgrain::vfgs

@@ -1,0 +1,146 @@
+// Checkasm-style equivalence of the VFGS row kernels (vfgs_row_kernels.hpp): the Highway
+// twins against the scalar references on random input, for every vector target this CPU
+// runs (each forced in turn). Random tables with 1 to kMaxVectorRuns runs (the kernels
+// specialise 1..4), template offsets over the whole pool, both block widths, every
+// overlap weight pair, samples above the bit depth, and grain, scales and shifts at their
+// extremes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/simd_targets.hpp"
+#include "fgc/vfgs/vfgs_intensity_runs.hpp"
+#include "fgc/vfgs/vfgs_row_kernels.hpp"
+#include "forced_simd_target.hpp"
+
+using namespace filmgrain;
+using namespace filmgrain::vfgs;
+
+namespace {
+
+class VfgsSimdEquivalence : public test_support::ForcedSimdTarget<20261125u> {};
+
+// Tables with `runs` random breakpoints (fewer when two coincide).
+ComponentLuts random_luts(std::mt19937& rng, int runs) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    ComponentLuts lut;
+    std::vector<int> starts = {0};
+    for (int r = 1; r < runs; ++r) starts.push_back(uniform(1, 255));
+    std::sort(starts.begin(), starts.end());
+    for (size_t r = 0; r < starts.size(); ++r) {
+        const int t = uniform(0, kMaxTemplates - 1);
+        const int s = uniform(0, 3) == 0 ? 0 : uniform(0, 3) == 0 ? 255 : uniform(1, 255);
+        for (int i = starts[r]; i < 256; ++i) {
+            lut.tmpl[static_cast<size_t>(i)] = static_cast<uint8_t>(t);
+            lut.scale[static_cast<size_t>(i)] = static_cast<uint8_t>(s);
+        }
+    }
+    return lut;
+}
+
+template <typename In>
+void check_grain_rows(std::mt19937& rng, int iterations) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    std::vector<int8_t> pool(static_cast<size_t>(kTemplateBytes) * kMaxTemplates);
+    for (int iter = 0; iter < iterations; ++iter) {
+        for (auto& v : pool) v = static_cast<int8_t>(uniform(0, 9) == 0 ? (uniform(0, 1) ? 127 : -127) : uniform(-127, 127));
+        const ComponentLuts lut = random_luts(rng, uniform(0, 1) ? uniform(1, 5) : uniform(6, kMaxVectorRuns));
+        const IntensityRuns runs = intensity_runs(lut);
+        ASSERT_LE(runs.count, kMaxVectorRuns);
+        GrainRowJob job;
+        job.block_width = uniform(0, 1) ? 16 : 8;
+        job.block_count = uniform(1, 30);
+        const int weights[4][2] = {{0, 0}, {12, 24}, {24, 12}, {20, 20}};
+        const int w = uniform(0, 3);
+        job.overlap_c1 = weights[w][0];
+        job.overlap_c2 = weights[w][1];
+        const int row = uniform(0, 63), row_up = uniform(0, 63);
+        job.pool = pool.data() + row * kTemplatePitch;
+        job.pool_up = pool.data() + row_up * kTemplatePitch;
+        job.luts = &lut;
+        job.runs = &runs;
+        job.intensity_shift = sizeof(In) == 1 ? 0 : 2;
+        std::vector<GrainBlock> blocks(static_cast<size_t>(job.block_count));
+        for (auto& b : blocks) {
+            b.offset = uniform(0, 63 - row) * kTemplatePitch + uniform(0, kTemplatePitch - job.block_width);
+            b.offset_up = uniform(0, 63 - row_up) * kTemplatePitch + uniform(0, kTemplatePitch - job.block_width);
+            b.sign = uniform(0, 1) ? 1 : -1;
+            b.sign_up = uniform(0, 1) ? 1 : -1;
+        }
+        job.blocks = blocks.data();
+        const size_t n = static_cast<size_t>(job.block_count * job.block_width);
+        std::vector<In> in(n);
+        const int top = sizeof(In) == 1 ? 255 : uniform(0, 3) == 0 ? 65535 : 1023;  // above 10 bits too
+        for (auto& v : in) v = static_cast<In>(uniform(0, top));
+        std::vector<int16_t> want_g(n + 1, 0x5A5A), want_s(n + 1, 0x5A5A), got_g(want_g), got_s(want_s);
+        if constexpr (sizeof(In) == 1) {
+            vfgs::scalar::grain_row_u8(job, in.data(), want_g.data(), want_s.data());
+            vfgs::simd::grain_row_u8(job, in.data(), got_g.data(), got_s.data());
+        } else {
+            vfgs::scalar::grain_row_u16(job, in.data(), want_g.data(), want_s.data());
+            vfgs::simd::grain_row_u16(job, in.data(), got_g.data(), got_s.data());
+        }
+        ASSERT_EQ(got_g, want_g) << "iteration " << iter << " blocks " << job.block_count << "x" << job.block_width
+                                 << " runs " << runs.count << " overlap " << job.overlap_c1;
+        ASSERT_EQ(got_s, want_s) << "iteration " << iter;
+    }
+}
+
+TEST_P(VfgsSimdEquivalence, GrainRow8Bit) { check_grain_rows<uint8_t>(rng, 600); }
+TEST_P(VfgsSimdEquivalence, GrainRow10Bit) { check_grain_rows<uint16_t>(rng, 600); }
+
+// kind 0: u8 -> u8, 1: u16 -> u16, 2: u16 -> u8 (--outdepth 8)
+void check_blend_rows(std::mt19937& rng, int kind, int iterations) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int iter = 0; iter < iterations; ++iter) {
+        BlendRowJob job;
+        job.width = uniform(0, 3) ? uniform(1, 300) : 16 * uniform(1, 20);
+        job.bit_depth = kind == 0 ? 8 : 10;
+        job.shift = uniform(job.bit_depth == 8 ? 8 : 6, job.bit_depth == 8 ? 13 : 11);
+        const size_t n = static_cast<size_t>(job.width);
+        std::vector<int16_t> grain(n), scale(n);
+        const int gmax = uniform(0, 3) == 0 ? 32767 : 143;  // beyond the synthesis' range too
+        for (auto& g : grain) g = static_cast<int16_t>(uniform(0, 7) == 0 ? (uniform(0, 1) ? gmax : -gmax) : uniform(-gmax, gmax));
+        for (auto& s : scale) s = static_cast<int16_t>(uniform(0, 5) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
+        const int16_t* g = grain.data();
+        const int top = kind == 0 ? 255 : uniform(0, 3) == 0 ? 65535 : 1023;
+        std::vector<uint16_t> in(n);
+        for (auto& v : in) v = static_cast<uint16_t>(uniform(0, 3) == 0 ? top * uniform(0, 1) : uniform(0, top));
+        const std::string what = "iteration " + std::to_string(iter) + " width " + std::to_string(job.width) + " shift " +
+                                 std::to_string(job.shift);
+        if (kind == 0) {
+            const std::vector<uint8_t> in8(in.begin(), in.end());
+            std::vector<uint8_t> want(n + 1, 0xA5), got(want);
+            vfgs::scalar::blend_row_u8(job, in8.data(), g, scale.data(), want.data());
+            vfgs::simd::blend_row_u8(job, in8.data(), g, scale.data(), got.data());
+            ASSERT_EQ(got, want) << what;
+            std::vector<uint8_t> inplace(in8);  // out == in, as the synthesis' in-place frames
+            vfgs::simd::blend_row_u8(job, inplace.data(), g, scale.data(), inplace.data());
+            inplace.push_back(0xA5);
+            ASSERT_EQ(inplace.size(), want.size());
+            for (int x = 0; x < job.width; ++x) ASSERT_EQ(inplace[static_cast<size_t>(x)], want[static_cast<size_t>(x)]) << what;
+        } else if (kind == 1) {
+            std::vector<uint16_t> want(n + 1, 0xA5A5), got(want);
+            vfgs::scalar::blend_row_u16(job, in.data(), g, scale.data(), want.data());
+            vfgs::simd::blend_row_u16(job, in.data(), g, scale.data(), got.data());
+            ASSERT_EQ(got, want) << what;
+        } else {
+            std::vector<uint8_t> want(n + 1, 0xA5), got(want);
+            vfgs::scalar::blend_row_u16_to_u8(job, in.data(), g, scale.data(), want.data());
+            vfgs::simd::blend_row_u16_to_u8(job, in.data(), g, scale.data(), got.data());
+            ASSERT_EQ(got, want) << what;
+        }
+    }
+}
+
+TEST_P(VfgsSimdEquivalence, BlendRow8Bit) { check_blend_rows(rng, 0, 1500); }
+TEST_P(VfgsSimdEquivalence, BlendRow10Bit) { check_blend_rows(rng, 1, 1500); }
+TEST_P(VfgsSimdEquivalence, BlendRow10BitTo8Bit) { check_blend_rows(rng, 2, 1500); }
+
+INSTANTIATE_TEST_SUITE_P(Targets, VfgsSimdEquivalence, ::testing::ValuesIn(filmgrain::simd::available_targets()),
+                         [](const ::testing::TestParamInfo<filmgrain::simd::Target>& i) { return i.param.name; });
+
+}  // namespace
