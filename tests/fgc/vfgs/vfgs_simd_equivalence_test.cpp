@@ -102,7 +102,7 @@ void check_blend_rows(std::mt19937& rng, int kind, int iterations) {
         job.shift = uniform(job.bit_depth == 8 ? 8 : 6, job.bit_depth == 8 ? 13 : 11);
         const size_t n = static_cast<size_t>(job.width);
         std::vector<int16_t> grain(n), scale(n);
-        const int gmax = uniform(0, 3) == 0 ? 32767 : 143;  // beyond the synthesis' range too
+        const int gmax = uniform(0, 3) == 0 ? 32767 : 159;  // beyond the synthesis' range too
         for (auto& g : grain) g = static_cast<int16_t>(uniform(0, 7) == 0 ? (uniform(0, 1) ? gmax : -gmax) : uniform(-gmax, gmax));
         for (auto& s : scale) s = static_cast<int16_t>(uniform(0, 5) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
         const int16_t* g = grain.data();
