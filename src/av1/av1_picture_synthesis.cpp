@@ -89,6 +89,7 @@ void StripeScratch::reserve(int luma_width, std::size_t co_sited_bytes) {
     if (previous_origins.size() < blocks) previous_origins.resize(blocks);
     if (block_rows.size() < blocks) block_rows.resize(blocks);
     if (previous_block_rows.size() < blocks) previous_block_rows.resize(blocks);
+    if (shared_rows.size() < blocks) shared_rows.resize(blocks);
     if (seams.size() < blocks) seams.resize(blocks);
     for (DrawnOffsets& d : drawn_)
         if (d.bytes.size() < blocks) d.bytes.resize(blocks);
@@ -110,7 +111,7 @@ const uint8_t* StripeScratch::block_offsets(int grain_seed, int stripe, int bloc
 std::size_t StripeScratch::bytes() const {
     return (noise.capacity() + previous.capacity()) * sizeof(int16_t) +
            (origins.capacity() + previous_origins.capacity()) * sizeof(int32_t) +
-           (block_rows.capacity() + previous_block_rows.capacity()) * sizeof(const int16_t*) +
+           (block_rows.capacity() + previous_block_rows.capacity() + shared_rows.capacity()) * sizeof(const int16_t*) +
            seams.capacity() * sizeof(uint32_t) + co_sited_luma.capacity() * sizeof(uint16_t) +
            drawn_[0].bytes.capacity() + drawn_[1].bytes.capacity();
 }
@@ -192,25 +193,38 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const bool fade_in_kernel = overlap && bit_depth_ <= 10;
         simd::BlockNoiseRow row = kernel_faded_row(sx, bit_depth_);
         row.fade = false;
+        // Where the seams are precomputed (12 bits with overlap), overlap_seams reads every row
+        // through its own pointers; elsewhere `pointers` point at the blocks' first rows, set
+        // once per stripe by first_rows(), and a row only moves row_offset.
+        const bool row_pointers = overlap && !fade_in_kernel;
+        auto first_rows = [&](const int32_t* origins, const int16_t** pointers) {
+            for (int b = 0; b < blocks; ++b) pointers[b] = tmpl.samples.data() + origins[b];
+        };
         // Row `i` of the blocks at `origins`, as it reads the template, through `pointers`.
         auto template_row = [&](const int32_t* origins, int i, const int16_t** pointers) {
             simd::BlockNoiseRow r = row;
-            const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
-            for (int b = 0; b < blocks; ++b) pointers[b] = t + origins[b];
             r.blocks = pointers;
             r.fade = fade_in_kernel;
-            if (overlap && !fade_in_kernel) {
-                overlap_seams(pointers, blocks, sx, bit_depth_, scratch.seams.data());
-                r.seams = scratch.seams.data();
+            if (!row_pointers) {
+                r.row_offset = std::ptrdiff_t(i) * tmpl.width;
+                return r;
             }
+            const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
+            for (int b = 0; b < blocks; ++b) pointers[b] = t + origins[b];
+            overlap_seams(pointers, blocks, sx, bit_depth_, scratch.seams.data());
+            r.seams = scratch.seams.data();
             return r;
         };
         // The previous stripe's blocks continue below it for the vertical overlap.
-        if (shared_rows)
+        if (shared_rows) {
             stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe - 1, blocks), blocks, sx, sy,
                                  scratch.previous_origins.data());
+            if (!row_pointers) first_rows(scratch.previous_origins.data(), scratch.previous_block_rows.data());
+            for (int b = 0; b < blocks; ++b) scratch.shared_rows[std::size_t(b)] = scratch.noise.data() + b * block_w;
+        }
         stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe, blocks), blocks, sx, sy,
                              scratch.origins.data());
+        if (!row_pointers) first_rows(scratch.origins.data(), scratch.block_rows.data());
         const int stripe_h = kBlockSize >> sy;
         for (int i = 0; i < shared_rows; ++i) {
             int16_t* cur = scratch.noise.data() + pitch * std::size_t(i);
@@ -234,9 +248,8 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             if (i < shared_rows) {
                 // The faded row, contiguous: no overlap left to apply.
                 simd::BlockNoiseRow r = row;
-                for (int b = 0; b < blocks; ++b)
-                    scratch.block_rows[std::size_t(b)] = scratch.noise.data() + pitch * std::size_t(i) + b * block_w;
-                r.blocks = scratch.block_rows.data();
+                r.blocks = scratch.shared_rows.data();
+                r.row_offset = std::ptrdiff_t(pitch) * i;
                 blend_row(i, r);
             } else {
                 blend_row(i, template_row(scratch.origins.data(), i, scratch.block_rows.data()));
@@ -297,7 +310,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                            chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                            clip_.min_value, clip_.max_chroma);
         });
-    }, share_co_sited);
+    // Luma first where that is safe (out of place, or the co-sited rows made before luma is
+    // overwritten): the chroma rows then read their luma while the luma pass has it in cache,
+    // instead of fetching it for chroma and again for luma (8-bit 1080p in one process: the
+    // per-frame cost fell by about 5 %).
+    }, share_co_sited || src.planes[0].data != dst.planes[0].data);
 }
 
 void Av1SynthesisContext::apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1, Kernels kernels,

@@ -12,6 +12,7 @@
 // (pmulhrsw) in 16-bit lanes of the scale shifted up to q15 (scale <= 255 and shift >= 8
 // keep it below 2^15).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "av1/grain_blending.hpp"
@@ -25,22 +26,28 @@ namespace filmgrain::av1::simd {
 // first; seams[0] holds blocks[0][0..1] unchanged) or, when seams is null and fade is set,
 // computed on the fly as clamp((left * fade_old[k] + own * fade_new[k] + 16) >> 5) (only up to
 // 10 bits, where that sum fits 16-bit lanes).
+//
+// Block b's row starts at blocks[b] + row_offset: a stripe points `blocks` at its blocks' first
+// rows once and moves row_offset down its rows (rather than rewriting every pointer per row).
 struct BlockNoiseRow {
     const int16_t* const* blocks = nullptr;
+    std::ptrdiff_t row_offset = 0;
     const uint32_t* seams = nullptr;
     int block_width = 32;  // 32 >> subsampling_x
     bool fade = false;
     int16_t fade_old[2] = {0, 0}, fade_new[2] = {32, 32};
     int16_t gmin = -128, gmax = 127;
 
+    const int16_t* block(int b) const { return blocks[b] + row_offset; }
+
     int16_t at(int x) const {
         const int b = x / block_width, k = x - b * block_width;
         if (seams && k < 2) return int16_t(uint16_t(seams[b] >> (16 * k)));
         if (fade && b > 0 && k < 2) {
-            const int v = (blocks[b - 1][block_width + k] * fade_old[k] + blocks[b][k] * fade_new[k] + 16) >> 5;
+            const int v = (block(b - 1)[block_width + k] * fade_old[k] + block(b)[k] * fade_new[k] + 16) >> 5;
             return int16_t(v < gmin ? gmin : v > gmax ? gmax : v);
         }
-        return blocks[b][k];
+        return block(b)[k];
     }
 };
 

@@ -54,7 +54,7 @@ HWY_INLINE hn::Vec<D16> FadeOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn
                                     const FadeConstants& c) {
     const hn::Repartition<uint32_t, D16> d32;
     uint32_t left_pair;
-    std::memcpy(&left_pair, row.blocks[b - 1] + row.block_width, sizeof left_pair);
+    std::memcpy(&left_pair, row.block(b - 1) + row.block_width, sizeof left_pair);
     const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
     const auto sum = hn::Add(hn::Mul(left, c.w_old), hn::Mul(own, c.w_new));
     return hn::Min(hn::Max(hn::MulFixedPoint15(sum, c.round), c.gmin), c.gmax);
@@ -84,7 +84,7 @@ HWY_INLINE void WithFirstOfBlock(const BlockNoiseRow& row, const FadeConstants& 
 // Lanes [j, j + Lanes) of block b's row, its first vector (j = 0) with the horizontal
 // overlap. At least two lanes where the row overlaps.
 HWY_INLINE hn::Vec<D16> BlockNoiseAt(D16 d16, const BlockNoiseRow& row, int b, int j, const FadeConstants& fade) {
-    const auto own = hn::LoadU(d16, row.blocks[b] + j);
+    const auto own = hn::LoadU(d16, row.block(b) + j);
     return j == 0 ? FirstNoiseOfBlock(d16, row, b, own, fade) : own;
 }
 
@@ -139,12 +139,12 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
                     for (; k + 2 * n <= count; k += 2 * n) {
                         hn::Vec<D16> s0, s1;
                         if constexpr (decltype(one_block)::value) {
-                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.blocks[b])));
-                            s1 = sum(k + n, hn::LoadU(d16, row.blocks[b] + n));
+                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.block(b))));
+                            s1 = sum(k + n, hn::LoadU(d16, row.block(b) + n));
                             b += 1;
                         } else {
-                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.blocks[b])));
-                            s1 = sum(k + n, first_of_block(b + 1, hn::LoadU(d16, row.blocks[b + 1])));
+                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.block(b))));
+                            s1 = sum(k + n, first_of_block(b + 1, hn::LoadU(d16, row.block(b + 1))));
                             b += 2;
                         }
                         __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi16(s0.raw, s1.raw), 0xD8);
@@ -173,7 +173,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
         auto whole_blocks = [&](auto vectors, auto first_of_block) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(vectors)::value;
             for (; k + kVectors * n <= count; k += kVectors * n, ++b) {
-                const int16_t* own = row.blocks[b];
+                const int16_t* own = row.block(b);
                 blend(k, first_of_block(b, hn::LoadU(d16, own)));
                 for (int v = 1; v < kVectors; ++v) blend(k + v * n, hn::LoadU(d16, own + v * n));
             }
@@ -190,7 +190,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
         }
     }
     for (; k < count; k += bw, ++b) {
-        const int16_t* own = row.blocks[b];
+        const int16_t* own = row.block(b);
         const int in_block = std::min(bw, count - k);
         int j = 0;
         if (overlapped && n < 2) {
@@ -438,6 +438,8 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
 }
 
 using D8 = hn::ScalableTag<uint8_t>;
+
+#include "av1/simd/blend_u8_avx512-inl.h"
 
 // out[k] = lut[index[k]] for k < count.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleRows<D8>& rows) {
@@ -739,8 +741,8 @@ private:
 
 // 8 bits: scale * noise in 16-bit lanes (255 * 128 fits), rounded by pmulhrsw with the
 // scale shifted up to q15.
-void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width, const ScalingLookup& scaling,
-                    int scaling_shift, int min_value, int max_value) {
+void BlendLumaRowU8Generic(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                           const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     HWY_ALIGN uint8_t scale[kChunk];
@@ -781,9 +783,10 @@ inline int ChromaVectorEnd(int width, int luma_width, int subsampling_x) {
     return vec_width / n * n;
 }
 
-void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
-                      const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+void BlendChromaRowU8Generic(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                             const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                             const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                             int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
@@ -798,6 +801,71 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
         src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
         [&](int merged_index, int nz) { return round2_signed(scaling(merged_index) * nz, scaling_shift); }, bit_depth,
         min_value, max_value);
+}
+
+#if HWY_TARGET == HWY_AVX3
+// Whole 512-bit vectors with VBMI byte permutes (blend_u8_avx512-inl.h); the samples after
+// the last whole 64 go to the generic kernels, with the seams of their blocks.
+FG_AVX512_VBMI void BlendLumaRowU8Avx512(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                                         const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                         int max_value) {
+    const BlockNoiseRow row = noise;  // local: the byte stores cannot alias it
+    const avx512::BlendConstants c = avx512::MakeConstants(scaling, scaling_shift, min_value, max_value);
+    auto rest = [&](int x, const uint32_t* seams) {
+        BlendLumaRowU8Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift,
+                              min_value, max_value);
+    };
+    avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::LumaRow<decltype(overlap)::value, decltype(clip)::value>(src, dst, row, width, c, rest);
+        });
+    });
+}
+
+FG_AVX512_VBMI void BlendChromaRowU8Avx512(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                                           const BlockNoiseRow& noise, int width, int subsampling_x,
+                                           const ChromaScalingIndex& index, const ScalingLookup& scaling,
+                                           int scaling_shift, int bit_depth, int min_value, int max_value) {
+    const BlockNoiseRow row = noise;  // local: the byte stores cannot alias it
+    const avx512::BlendConstants c = avx512::MakeConstants(scaling, scaling_shift, min_value, max_value);
+    auto rest = [&](int x, const uint32_t* seams) {
+        BlendChromaRowU8Generic(src + x, dst + x, luma + (x << subsampling_x), luma_width - (x << subsampling_x),
+                                avx512::RowFrom(row, x, seams), width - x, subsampling_x, index, scaling,
+                                scaling_shift, bit_depth, min_value, max_value);
+    };
+    avx512::WithFlag(subsampling_x != 0, [&](auto subsampled) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                    avx512::ChromaRow<decltype(subsampled)::value, decltype(from_luma)::value,
+                                      decltype(overlap)::value, decltype(clip)::value>(src, dst, luma, luma_width, row,
+                                                                                     width, index, c, rest);
+                });
+            });
+        });
+    });
+}
+#endif
+
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                    const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (avx512::HasAvx512Vbmi())
+        return BlendLumaRowU8Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+#endif
+    BlendLumaRowU8Generic(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+
+void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                      const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (avx512::HasAvx512Vbmi())
+        return BlendChromaRowU8Avx512(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
+                                      scaling_shift, bit_depth, min_value, max_value);
+#endif
+    BlendChromaRowU8Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
+                            bit_depth, min_value, max_value);
 }
 
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
