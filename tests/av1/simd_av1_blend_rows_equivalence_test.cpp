@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "av1/block_synthesis.hpp"
 #include "av1/grain_blending.hpp"
 #include "av1/scaling_lookup.hpp"
 #include "av1/simd/av1_kernels.hpp"
@@ -45,6 +46,7 @@ struct TemplateNoise {
         row.blocks = blocks.data();
         row.block_width = block_width;
         row.row_offset = std::ptrdiff_t(u(0, rows - 1)) * pitch;
+        row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
         const bool subsampled = block_width == 16;
         if (mode == 1) {
             for (int b = 0; b < count; b++)
@@ -54,7 +56,6 @@ struct TemplateNoise {
             row.fade = true;
             row.fade_old[0] = int16_t(subsampled ? 23 : 27), row.fade_old[1] = int16_t(subsampled ? 0 : 17);
             row.fade_new[0] = int16_t(subsampled ? 22 : 17), row.fade_new[1] = int16_t(subsampled ? 32 : 27);
-            row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
         }
         for (int x = 0; x < width; x++) flat.push_back(row.at(x));
     }
@@ -151,6 +152,31 @@ TEST_P(SimdAv1BlendRowsEquivalence, EightBitRows) { check_rows<uint8_t>(rng, 8, 
 TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRows) {
     check_rows<uint16_t>(rng, 10, 100);
     check_rows<uint16_t>(rng, 12, 60);
+}
+
+// The rows a stripe shares with the one above (assemble_cross_faded_row, up to 10 bits): both
+// rows' noise, each with its horizontal overlap faded or none, then the vertical fade of
+// build_stripe_noise, against the same from BlockNoiseRow::at.
+TEST_P(SimdAv1BlendRowsEquivalence, CrossFadedRows) {
+    for (int iter = 0; iter < 300; iter++) {
+        const int bd = uniform(0, 1) ? 10 : 8, subx = uniform(0, 1), suby = uniform(0, 1);
+        const int width = uniform(0, 2) ? uniform(1, 2200) : 1920 >> subx;
+        const int mode = uniform(0, 1) ? 2 : 0;  // faded in the kernel or no overlap (both rows alike)
+        const TemplateNoise above(width, 32 >> subx, bd, uniform(1, 40), mode, rng);
+        const TemplateNoise own(width, 32 >> subx, bd, uniform(1, 40), mode, rng);
+        const av1::OverlapWeights w = av1::overlap_weights(uniform(0, 1 - suby), suby);
+        const int gmin = own.row.gmin, gmax = own.row.gmax;
+        std::vector<int16_t> want(static_cast<std::size_t>(width), int16_t(0)), got(want.size() + 3, int16_t(0x7777));
+        for (int x = 0; x < width; x++) {
+            const int v = (above.flat[std::size_t(x)] * w.old_weight + own.flat[std::size_t(x)] * w.new_weight + 16) >> 5;
+            want[std::size_t(x)] = int16_t(std::clamp(v, gmin, gmax));
+        }
+        av1::simd::assemble_cross_faded_row(above.row, own.row, width, w.old_weight, w.new_weight, got.data());
+        for (int x = 0; x < width; x++)
+            ASSERT_EQ(got[std::size_t(x)], want[std::size_t(x)])
+                << "iteration " << iter << " x " << x << " width " << width << " bd " << bd << " mode " << mode;
+        for (std::size_t x = std::size_t(width); x < got.size(); x++) ASSERT_EQ(got[x], int16_t(0x7777)) << "wrote past the row";
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, SimdAv1BlendRowsEquivalence, ::testing::ValuesIn(simd::available_targets()),

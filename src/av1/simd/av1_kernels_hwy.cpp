@@ -932,8 +932,8 @@ void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
 // The vertical overlap fused with the assembly of both rows: no row is written twice. Up to
 // 10 bits the weighted sum fits 16-bit lanes (|noise| <= 512, weights summing to at most 45)
 // and Round2(sum, 5) is a rounding high multiply by 1 << 10, as in FirstNoiseOfBlock.
-void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width, int old_weight,
-                           int new_weight, int16_t* out) {
+void AssembleCrossFadedRowGeneric(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width,
+                                  int old_weight, int new_weight, int16_t* out) {
     const D16 d16;
     const int n = int(hn::Lanes(d16));
     const BlockNoiseRow above = old_noise, own = new_noise;  // local: the stores cannot alias them
@@ -952,6 +952,47 @@ void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& 
         const int v = (above.at(x) * old_weight + own.at(x) * new_weight + 16) >> 5;
         out[x] = int16_t(v < own.gmin ? own.gmin : v > own.gmax ? own.gmax : v);
     }
+}
+
+#if HWY_TARGET == HWY_AVX3
+// Whole 512-bit vectors (blend_u8_avx512-inl.h), for the block widths the synthesis makes; the
+// samples after the last whole 64 (with the seams of their blocks) the generic way.
+FG_AVX512_VBMI void AssembleCrossFadedRowAvx512(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise,
+                                                int width, int old_weight, int new_weight, int16_t* out) {
+    auto rest = [&](int x) {
+        auto seams = [&](const BlockNoiseRow& row, uint32_t* faded) {
+            const int bw = row.block_width;
+            for (int b = x / bw, k = 0; b * bw < width; ++b, ++k)
+                faded[k] = uint32_t(uint16_t(row.at(b * bw))) | uint32_t(uint16_t(row.at(b * bw + 1))) << 16;
+            return row.fade ? faded : nullptr;
+        };
+        uint32_t above[64 / 16 + 1], own[64 / 16 + 1];
+        AssembleCrossFadedRowGeneric(avx512::RowFrom(old_noise, x, seams(old_noise, above)),
+                                     avx512::RowFrom(new_noise, x, seams(new_noise, own)), width - x, old_weight,
+                                     new_weight, out + x);
+    };
+    avx512::WithFlag(new_noise.fade, [&](auto fade) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        if (new_noise.block_width == 16)
+            avx512::CrossFadedRow<16, decltype(fade)::value>(old_noise, new_noise, width, old_weight, new_weight, out,
+                                                             rest);
+        else
+            avx512::CrossFadedRow<32, decltype(fade)::value>(old_noise, new_noise, width, old_weight, new_weight, out,
+                                                             rest);
+    });
+}
+#endif
+
+void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width, int old_weight,
+                           int new_weight, int16_t* out) {
+#if HWY_TARGET == HWY_AVX3
+    // both rows alike (the same plane): no given seams, fade or not, blocks of 16 or 32
+    const bool whole_vectors = !old_noise.seams && !new_noise.seams && old_noise.fade == new_noise.fade &&
+                               old_noise.block_width == new_noise.block_width &&
+                               (new_noise.block_width == 16 || new_noise.block_width == 32);
+    if (whole_vectors && avx512::HasAvx512Vbmi())
+        return AssembleCrossFadedRowAvx512(old_noise, new_noise, width, old_weight, new_weight, out);
+#endif
+    AssembleCrossFadedRowGeneric(old_noise, new_noise, width, old_weight, new_weight, out);
 }
 
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,

@@ -72,11 +72,34 @@ FG_AVX512_VBMI inline __m512i LeftPairs(const int16_t* p, const int16_t* q, int 
     std::memcpy(&b, q + block_width, sizeof b);
     return _mm512_mask_set1_epi32(_mm512_set1_epi32(a), 0xFF00, b);
 }
+// The fade of every 32-bit lane of `own` with the same lane of `left`.
+FG_AVX512_VBMI inline __m512i FadePairs(__m512i own, __m512i left, const SeamFade& f) {
+    const __m512i sum = _mm512_add_epi16(_mm512_mullo_epi16(left, f.w_old), _mm512_mullo_epi16(own, f.w_new));
+    return _mm512_min_epi16(_mm512_max_epi16(_mm512_mulhrs_epi16(sum, f.round), f.gmin), f.gmax);
+}
 // `noise` with its 32-bit lanes `at` (a block's first two samples each) faded with `left`.
 FG_AVX512_VBMI inline __m512i FadeFirstPairs(__m512i noise, __m512i left, __mmask16 at, const SeamFade& f) {
-    const __m512i sum = _mm512_add_epi16(_mm512_mullo_epi16(left, f.w_old), _mm512_mullo_epi16(noise, f.w_new));
-    const __m512i faded = _mm512_min_epi16(_mm512_max_epi16(_mm512_mulhrs_epi16(sum, f.round), f.gmin), f.gmax);
-    return _mm512_mask_mov_epi32(noise, at, faded);
+    return _mm512_mask_mov_epi32(noise, at, FadePairs(noise, left, f));
+}
+// Four 16-wide blocks in sample order (blocks 0 and 1 start at 32-bit lanes 0 and 8 of `low`,
+// blocks 2 and 3 of `high`), faded in one vector: the four first pairs gathered into lanes 0,
+// 8, 4 and 12 by one permute, the left pairs of blocks[-1..2] broadcast there. Block 0 keeps
+// its own where it is the row's first (`first_of_row`).
+FG_AVX512_VBMI inline void FadeFourBlocks(const int16_t* const* blocks, bool first_of_row, const SeamFade& f,
+                                          __m512i& low, __m512i& high) {
+    const __m512i gather = _mm512_set_epi32(0, 0, 0, 24, 0, 0, 0, 8, 0, 0, 0, 16, 0, 0, 0, 0);
+    const __m512i own = _mm512_permutex2var_epi32(low, gather, high);
+    int32_t l[4];
+    for (int k = 0; k < 4; ++k) std::memcpy(&l[k], blocks[k - 1] + 16, sizeof l[k]);
+    __m512i left = _mm512_set1_epi32(l[0]);
+    left = _mm512_mask_set1_epi32(left, 0xFF00, l[1]);
+    left = _mm512_mask_set1_epi32(left, 0x00F0, l[2]);
+    left = _mm512_mask_set1_epi32(left, 0xF000, l[3]);
+    const __m512i faded = FadePairs(own, left, f);
+    low = _mm512_mask_permutexvar_epi32(low, first_of_row ? 0x0100 : 0x0101,
+                                        _mm512_set_epi32(0, 0, 0, 0, 0, 0, 0, 8, 0, 0, 0, 0, 0, 0, 0, 0), faded);
+    high = _mm512_mask_permutexvar_epi32(high, 0x0101,
+                                         _mm512_set_epi32(0, 0, 0, 0, 0, 0, 0, 12, 0, 0, 0, 0, 0, 0, 0, 4), faded);
 }
 
 // Noise of 64 samples from blocks[0] on (two 32-wide or four 16-wide blocks), in one of two
@@ -274,8 +297,7 @@ FG_AVX512_VBMI void ChromaRow(const uint8_t* src, uint8_t* dst, const uint8_t* l
                 // (two); the row's first has no left
                 const int16_t* before = blocks[-1];  // (block 0's own where it has none)
                 if constexpr (kSubsampled) {
-                    noise_low = FadeFirstPairs(noise_low, LeftPairs(before, blocks[0], bw), x ? 0x0101 : 0x0100, fade);
-                    noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[1], blocks[2], bw), 0x0101, fade);
+                    FadeFourBlocks(blocks, x == 0, fade, noise_low, noise_high);
                 } else {
                     noise_low = FadeFirstPairs(noise_low, LeftPairs(before, before, bw), x ? 0x0001 : 0, fade);
                     noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], bw), 0x0001, fade);
@@ -289,6 +311,52 @@ FG_AVX512_VBMI void ChromaRow(const uint8_t* src, uint8_t* dst, const uint8_t* l
                                                                   s_high, noise_low, noise_high));
         },
         rest);
+}
+
+// The noise of samples [x, x + 64) of a row whose horizontal overlap is faded in the kernel
+// (fade) or absent, in sample order (as NoiseOf64), faded.
+template <int kBlockWidth, bool kFade>
+FG_AVX512_VBMI inline void FadedNoiseOf64(const BlockNoiseRow& row, int x, const SeamFade& fade, __m512i& low,
+                                          __m512i& high) {
+    const int b = x / kBlockWidth;
+    const int16_t* at[5];  // blocks b - 1 (b where b is the row's first) to b + 3
+    for (int k = -1; k < 64 / kBlockWidth; ++k) at[k + 1] = row.block(b + k < 0 ? 0 : b + k);
+    const int16_t* const* blocks = at + 1;
+    NoiseOf64<kBlockWidth, false, false>(blocks, nullptr, low, high);
+    if constexpr (kFade) {
+        if constexpr (kBlockWidth == 16) {
+            FadeFourBlocks(blocks, x == 0, fade, low, high);
+        } else {
+            low = FadeFirstPairs(low, LeftPairs(blocks[-1], blocks[-1], kBlockWidth), x ? 0x0001 : 0, fade);
+            high = FadeFirstPairs(high, LeftPairs(blocks[0], blocks[0], kBlockWidth), 0x0001, fade);
+        }
+    }
+}
+
+// Twin of assemble_cross_faded_row up to 10 bits (where the weighted sums fit 16-bit lanes):
+// both rows' noise 64 samples at a time, then the vertical fade; `rest(x)` assembles the
+// samples from x on the generic way.
+template <int kBlockWidth, bool kFade, class Rest>
+FG_AVX512_VBMI void CrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width,
+                                  int old_weight, int new_weight, int16_t* out, Rest&& rest) {
+    const BlockNoiseRow above = old_noise, own = new_noise;  // local: the stores cannot alias them
+    const SeamFade fade_above = MakeSeamFade(above), fade_own = MakeSeamFade(own);
+    const __m512i w_old = _mm512_set1_epi16(int16_t(old_weight)), w_new = _mm512_set1_epi16(int16_t(new_weight));
+    const __m512i round = _mm512_set1_epi16(1 << 10);
+    const __m512i gmin = _mm512_set1_epi16(own.gmin), gmax = _mm512_set1_epi16(own.gmax);
+    auto vertical = [&](__m512i a, __m512i o) FG_AVX512_VBMI {
+        const __m512i sum = _mm512_add_epi16(_mm512_mullo_epi16(a, w_old), _mm512_mullo_epi16(o, w_new));
+        return _mm512_min_epi16(_mm512_max_epi16(_mm512_mulhrs_epi16(sum, round), gmin), gmax);
+    };
+    int x = 0;
+    for (; x + 64 <= width; x += 64) {
+        __m512i a_low, a_high, o_low, o_high;
+        FadedNoiseOf64<kBlockWidth, kFade>(above, x, fade_above, a_low, a_high);
+        FadedNoiseOf64<kBlockWidth, kFade>(own, x, fade_own, o_low, o_high);
+        _mm512_storeu_si512(out + x, vertical(a_low, o_low));
+        _mm512_storeu_si512(out + x + 32, vertical(a_high, o_high));
+    }
+    if (x < width) rest(x);
 }
 
 // The template arguments of LumaRow / ChromaRow from run-time flags: each combination is
