@@ -154,6 +154,62 @@ TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRows) {
     check_rows<uint16_t>(rng, 12, 60);
 }
 
+// The several-row kernels (blend_luma_rows_u8 / blend_chroma_rows_u8, as the synthesis calls
+// them for a stripe's rows): each row r at its stride, its noise r template rows further
+// down, its co-sited luma a luma stride further, against the references row by row.
+TEST_P(SimdAv1BlendRowsEquivalence, EightBitRowsOfAStripe) {
+    for (int iter = 0; iter < 60; iter++) {
+        const int width = uniform(0, 1) ? 1920 : uniform(1, 700), subx = uniform(0, 1), mode = uniform(0, 2);
+        const int luma_width = subx ? 2 * width - uniform(0, 1) : width;
+        const int chroma_width = subx ? (luma_width + 1) / 2 : width;
+        const int rows = uniform(1, 32);
+        const av1::ScalingLookup scaling = random_scaling(rng, 8);
+        const int shift = uniform(8, 11);
+        const av1::ClipLimits clip = av1::clip_limits(uniform(0, 1), 8, uniform(0, 2));
+        const av1::ChromaScalingIndex index{uniform(0, 3) == 0, uniform(-128, 127), uniform(-128, 127), uniform(-256, 255)};
+        // the first row anywhere in the first 40 template rows, the others below it
+        TemplateNoise luma_noise(luma_width, 32, 8, rows + 40, mode, rng);
+        TemplateNoise chroma_noise(chroma_width, 32 >> subx, 8, rows + 40, mode, rng);
+        luma_noise.row.row_offset = std::ptrdiff_t(uniform(0, 40)) * luma_noise.pitch;
+        chroma_noise.row.row_offset = std::ptrdiff_t(uniform(0, 40)) * chroma_noise.pitch;
+        const int luma_stride = luma_width + uniform(0, 40), chroma_stride = chroma_width + uniform(0, 40);
+        const std::vector<uint8_t> luma = random_samples<uint8_t>(rng, luma_stride * rows, 8, uniform(0, 1));
+        const std::vector<uint8_t> chroma = random_samples<uint8_t>(rng, chroma_stride * rows, 8, uniform(0, 1));
+        const int got_stride = luma_stride + uniform(0, 40);
+        std::vector<uint8_t> want(std::size_t(got_stride) * std::size_t(rows), uint8_t(7)), got = want;
+        // the luma rows co-sited with the chroma rows: every one, or every other (4:2:0)
+        const int luma_step = uniform(0, 1) + 1;
+        const int chroma_rows = (rows + luma_step - 1) / luma_step;
+        auto noise_of = [](const TemplateNoise& t, int r) {
+            av1::simd::BlockNoiseRow row = t.row;
+            row.row_offset += std::ptrdiff_t(r) * t.pitch;
+            std::vector<int16_t> flat;
+            for (int x = 0; x < int(t.flat.size()); x++) flat.push_back(row.at(x));
+            return flat;
+        };
+        for (int r = 0; r < rows; r++)
+            av1::blend_luma_row<uint8_t>(luma.data() + r * luma_stride, want.data() + r * got_stride,
+                                         noise_of(luma_noise, r).data(), luma_width, scaling, shift, clip.min_value,
+                                         clip.max_luma);
+        const av1::simd::PlaneRows luma_rows{rows, luma_stride, got_stride, 0, luma_noise.pitch};
+        av1::simd::blend_luma_rows_u8(luma.data(), got.data(), luma_rows, luma_noise.row, luma_width, scaling, shift,
+                                      clip.min_value, clip.max_luma);
+        ASSERT_EQ(got, want) << "luma rows, iteration " << iter << " width " << luma_width << " rows " << rows;
+        for (int r = 0; r < chroma_rows; r++)
+            av1::blend_chroma_row<uint8_t>(chroma.data() + r * chroma_stride, want.data() + r * got_stride,
+                                           luma.data() + r * luma_step * luma_stride, luma_width,
+                                           noise_of(chroma_noise, r).data(), chroma_width, subx, index, scaling, shift,
+                                           8, clip.min_value, clip.max_chroma);
+        const av1::simd::PlaneRows chroma_rows_of{chroma_rows, chroma_stride, got_stride, std::ptrdiff_t(luma_step) * luma_stride,
+                                                  chroma_noise.pitch};
+        av1::simd::blend_chroma_rows_u8(chroma.data(), got.data(), luma.data(), luma_width, chroma_rows_of,
+                                        chroma_noise.row, chroma_width, subx, index, scaling, shift, 8,
+                                        clip.min_value, clip.max_chroma);
+        ASSERT_EQ(got, want) << "chroma rows, iteration " << iter << " width " << chroma_width << " rows "
+                             << chroma_rows;
+    }
+}
+
 // The rows a stripe shares with the one above (assemble_cross_faded_row, up to 10 bits): both
 // rows' noise, each with its horizontal overlap faded or none, then the vertical fade of
 // build_stripe_noise, against the same from BlockNoiseRow::at.

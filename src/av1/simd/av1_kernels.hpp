@@ -51,11 +51,24 @@ struct BlockNoiseRow {
     }
 };
 
+// Rows [0, count) of a plane for the *_rows kernels: row r reads src + r * src_stride (bytes)
+// and the luma co-sited with it at luma + r * luma_stride, writes dst + r * dst_stride, and
+// takes the noise row with row_offset + r * noise_step (the next template row).
+struct PlaneRows {
+    int count = 1;
+    std::ptrdiff_t src_stride = 0, dst_stride = 0, luma_stride = 0, noise_step = 0;
+};
+
 // Twins of blend_luma_row.
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+
+// blend_luma_row_u8 of each of rows.count rows, one call for all (the row loop inside the
+// target's kernel, its constants made once).
+void blend_luma_rows_u8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                        int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
 
 // Twins of blend_chroma_row.
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
@@ -64,6 +77,12 @@ void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, 
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                           const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+
+// blend_chroma_row_u8 of each of rows.count rows, one call for all.
+void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                          const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                          const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                          int bit_depth, int min_value, int max_value);
 
 // Twin of co_sited_luma_row above 8 bits (where the synthesis shares it between the chroma
 // planes).

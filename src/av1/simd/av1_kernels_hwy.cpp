@@ -805,41 +805,43 @@ void BlendChromaRowU8Generic(const uint8_t* src, uint8_t* dst, const uint8_t* lu
 
 #if HWY_TARGET == HWY_AVX3
 // Whole 512-bit vectors with VBMI byte permutes (blend_u8_avx512-inl.h); the samples after
-// the last whole 64 go to the generic kernels, with the seams of their blocks.
-FG_AVX512_VBMI void BlendLumaRowU8Avx512(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
-                                         const ScalingLookup& scaling, int scaling_shift, int min_value,
-                                         int max_value) {
-    const BlockNoiseRow row = noise;  // local: the byte stores cannot alias it
-    const avx512::BlendConstants c = avx512::MakeConstants(scaling, scaling_shift, min_value, max_value);
-    auto rest = [&](int x, const uint32_t* seams) {
-        BlendLumaRowU8Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift,
-                              min_value, max_value);
+// the last whole 64 of a row go to the generic kernels, with the seams of their blocks.
+FG_AVX512_VBMI void BlendLumaRowsU8Avx512(const uint8_t* src, uint8_t* dst, const PlaneRows& rows,
+                                          const BlockNoiseRow& noise, int width, const ScalingLookup& scaling,
+                                          int scaling_shift, int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the byte stores cannot alias it
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        BlendLumaRowU8Generic(src + r * rows.src_stride + x, dst + r * rows.dst_stride + x,
+                              avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, min_value, max_value);
     };
-    avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+    avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-            avx512::LumaRow<decltype(overlap)::value, decltype(clip)::value>(src, dst, row, width, c, rest);
+            avx512::LumaRows<decltype(overlap)::value, decltype(clip)::value>(
+                src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
         });
     });
 }
 
-FG_AVX512_VBMI void BlendChromaRowU8Avx512(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
-                                           const BlockNoiseRow& noise, int width, int subsampling_x,
-                                           const ChromaScalingIndex& index, const ScalingLookup& scaling,
-                                           int scaling_shift, int bit_depth, int min_value, int max_value) {
-    const BlockNoiseRow row = noise;  // local: the byte stores cannot alias it
-    const avx512::BlendConstants c = avx512::MakeConstants(scaling, scaling_shift, min_value, max_value);
-    auto rest = [&](int x, const uint32_t* seams) {
-        BlendChromaRowU8Generic(src + x, dst + x, luma + (x << subsampling_x), luma_width - (x << subsampling_x),
+FG_AVX512_VBMI void BlendChromaRowsU8Avx512(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                                            const PlaneRows& rows, const BlockNoiseRow& noise, int width,
+                                            int subsampling_x, const ChromaScalingIndex& index,
+                                            const ScalingLookup& scaling, int scaling_shift, int bit_depth,
+                                            int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the byte stores cannot alias it
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        BlendChromaRowU8Generic(src + r * rows.src_stride + x, dst + r * rows.dst_stride + x,
+                                luma + r * rows.luma_stride + (x << subsampling_x), luma_width - (x << subsampling_x),
                                 avx512::RowFrom(row, x, seams), width - x, subsampling_x, index, scaling,
                                 scaling_shift, bit_depth, min_value, max_value);
     };
     avx512::WithFlag(subsampling_x != 0, [&](auto subsampled) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-            avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
                 avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-                    avx512::ChromaRow<decltype(subsampled)::value, decltype(from_luma)::value,
-                                      decltype(overlap)::value, decltype(clip)::value>(src, dst, luma, luma_width, row,
-                                                                                     width, index, c, rest);
+                    avx512::ChromaRows<decltype(subsampled)::value, decltype(from_luma)::value,
+                                       decltype(overlap)::value, decltype(clip)::value>(
+                        src, dst, luma, luma_width, rows, first, width, index, scaling, scaling_shift, min_value,
+                        max_value, rest);
                 });
             });
         });
@@ -847,25 +849,45 @@ FG_AVX512_VBMI void BlendChromaRowU8Avx512(const uint8_t* src, uint8_t* dst, con
 }
 #endif
 
-void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
-                    const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+// Row by row where no target form takes several (each row one call of the same target: no
+// dispatch per row).
+void BlendLumaRowsU8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise, int width,
+                     const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
 #if HWY_TARGET == HWY_AVX3
     if (avx512::HasAvx512Vbmi())
-        return BlendLumaRowU8Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+        return BlendLumaRowsU8Avx512(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
 #endif
-    BlendLumaRowU8Generic(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+    BlockNoiseRow row = noise;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
+        BlendLumaRowU8Generic(src + r * rows.src_stride, dst + r * rows.dst_stride, row, width, scaling,
+                              scaling_shift, min_value, max_value);
+}
+
+void BlendChromaRowsU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const PlaneRows& rows,
+                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (avx512::HasAvx512Vbmi())
+        return BlendChromaRowsU8Avx512(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index, scaling,
+                                       scaling_shift, bit_depth, min_value, max_value);
+#endif
+    BlockNoiseRow row = noise;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
+        BlendChromaRowU8Generic(src + r * rows.src_stride, dst + r * rows.dst_stride, luma + r * rows.luma_stride,
+                                luma_width, row, width, subsampling_x, index, scaling, scaling_shift, bit_depth,
+                                min_value, max_value);
+}
+
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                    const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    BlendLumaRowsU8(src, dst, PlaneRows{}, noise, width, scaling, scaling_shift, min_value, max_value);
 }
 
 void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
-#if HWY_TARGET == HWY_AVX3
-    if (avx512::HasAvx512Vbmi())
-        return BlendChromaRowU8Avx512(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
-                                      scaling_shift, bit_depth, min_value, max_value);
-#endif
-    BlendChromaRowU8Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
-                            bit_depth, min_value, max_value);
+    BlendChromaRowsU8(src, dst, luma, luma_width, PlaneRows{}, noise, width, subsampling_x, index, scaling,
+                      scaling_shift, bit_depth, min_value, max_value);
 }
 
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
@@ -1025,6 +1047,8 @@ namespace filmgrain::av1::simd {
 HWY_EXPORT(BlendLumaRowU8);
 HWY_EXPORT(BlendLumaRowU16);
 HWY_EXPORT(BlendChromaRowU8);
+HWY_EXPORT(BlendLumaRowsU8);
+HWY_EXPORT(BlendChromaRowsU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
 HWY_EXPORT(CoSitedLumaRowU16);
@@ -1034,6 +1058,17 @@ HWY_EXPORT(AssembleCrossFadedRow);
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void blend_luma_rows_u8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                        int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowsU8)(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                          const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                          const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                          int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowsU8)(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index,
+                                            scaling, scaling_shift, bit_depth, min_value, max_value);
 }
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {

@@ -217,31 +217,38 @@ FG_AVX512_VBMI inline BlendConstants MakeConstants(const ScalingLookup& scaling,
             _mm512_set1_epi8(char(min_value)), _mm512_set1_epi8(char(max_value))};
 }
 
-// Twin of blend_luma_row at 8 bits; `rest` blends samples [x, width) the generic way. Unpack
-// order: the samples themselves are the indices, and the noise shuffles cost what a
-// lane-restoring permute would.
+// Twin of blend_luma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, x, seams)` blends
+// samples [x, width) of row r the generic way. Unpack order: the samples themselves are the
+// indices, and the noise shuffles cost what a lane-restoring permute would.
 template <Overlap kOverlap, bool kClip, class Rest>
-FG_AVX512_VBMI void LumaRow(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& row, int width,
-                            const BlendConstants& constants, Rest&& rest) {
-    const BlendConstants c = constants;  // local: the byte stores cannot alias it
-    const SeamFade fade = MakeSeamFade(row);
+FG_AVX512_VBMI void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& first_row,
+                             int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                             Rest&& rest) {
+    // made once for the rows, in registers
+    const BlendConstants c = MakeConstants(scaling, scaling_shift, min_value, max_value);
+    const SeamFade fade = MakeSeamFade(first_row);
     const __m512i zero = _mm512_setzero_si512();
-    ForEach64<32, kOverlap>(
-        row, width, width,
-        [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
-            __m512i noise_low, noise_high;
-            NoiseOf64<32, true, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
-            if constexpr (kOverlap == Overlap::kFade) {
-                // both blocks start in noise_low, at 32-bit lanes 0 and 8; the row's first has no left
-                const __m512i left = LeftPairs(blocks[-1], blocks[0], 32);
-                noise_low = FadeFirstPairs(noise_low, left, x ? 0x0101 : 0x0100, fade);
-            }
-            const __m512i s = _mm512_loadu_si512(src + x);
-            _mm512_storeu_si512(dst + x, AddNoise64<kClip, true>(c, s, _mm512_unpacklo_epi8(s, zero),
-                                                                 _mm512_unpackhi_epi8(s, zero), noise_low,
-                                                                 noise_high));
-        },
-        rest);
+    BlockNoiseRow row = first_row;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
+        const uint8_t* s = src + r * rows.src_stride;
+        uint8_t* d = dst + r * rows.dst_stride;
+        ForEach64<32, kOverlap>(
+            row, width, width,
+            [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+                __m512i noise_low, noise_high;
+                NoiseOf64<32, true, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
+                if constexpr (kOverlap == Overlap::kFade) {
+                    // both blocks start in noise_low, at 32-bit lanes 0 and 8; the row's first has no left
+                    const __m512i left = LeftPairs(blocks[-1], blocks[0], 32);
+                    noise_low = FadeFirstPairs(noise_low, left, x ? 0x0101 : 0x0100, fade);
+                }
+                const __m512i v = _mm512_loadu_si512(s + x);
+                _mm512_storeu_si512(d + x, AddNoise64<kClip, true>(c, v, _mm512_unpacklo_epi8(v, zero),
+                                                                   _mm512_unpackhi_epi8(v, zero), noise_low,
+                                                                   noise_high));
+            },
+            [&](int x, const uint32_t* seams) { rest(r, row, x, seams); });
+    }
 }
 
 // The 64 chroma scaling indices (`merged`, chroma_scaling_index) from chroma x on, in sample
@@ -273,44 +280,52 @@ FG_AVX512_VBMI inline void ChromaIndices64(const uint8_t* luma, int x, __m512i s
     }
 }
 
-// Twin of blend_chroma_row at 8 bits; `rest` blends samples [x, width) the generic way.
-// Sample order: the co-sited luma averages come out so, and putting them in unpack order
-// would cost two shuffles more than the one permute that restores the output's lanes.
+// Twin of blend_chroma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, row, x, seams)`
+// blends samples [x, width) of row r the generic way. Sample order: the co-sited luma averages
+// come out so, and putting them in unpack order would cost two shuffles more than the one
+// permute that restores the output's lanes.
 template <bool kSubsampled, bool kFromLuma, Overlap kOverlap, bool kClip, class Rest>
-FG_AVX512_VBMI void ChromaRow(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
-                              const BlockNoiseRow& row, int width, const ChromaScalingIndex& index,
-                              const BlendConstants& constants, Rest&& rest) {
-    const BlendConstants c = constants;  // local: the byte stores cannot alias it
-    const SeamFade fade = MakeSeamFade(row);
+FG_AVX512_VBMI void ChromaRows(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                               const PlaneRows& rows, const BlockNoiseRow& first_row, int width,
+                               const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                               int min_value, int max_value, Rest&& rest) {
+    const BlendConstants c = MakeConstants(scaling, scaling_shift, min_value, max_value);
+    const SeamFade fade = MakeSeamFade(first_row);
     const __m512i mults = _mm512_set1_epi16(int16_t(uint16_t(uint8_t(index.luma_mult)) | uint16_t(uint8_t(index.mult)) << 8));
     const __m512i offset = _mm512_set1_epi16(int16_t(index.offset));
     // The last column of an odd-width subsampled row pairs the last luma sample with itself.
     const int vector_end = kSubsampled && (luma_width & 1) ? width - 1 : width;
     constexpr int bw = kSubsampled ? 16 : 32;
-    ForEach64<bw, kOverlap>(
-        row, width, vector_end,
-        [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
-            __m512i noise_low, noise_high, index_low, index_high;
-            NoiseOf64<bw, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
-            if constexpr (kOverlap == Overlap::kFade) {
-                // blocks start at 32-bit lanes 0 and 8 of each vector (four blocks) or lane 0
-                // (two); the row's first has no left
-                const int16_t* before = blocks[-1];  // (block 0's own where it has none)
-                if constexpr (kSubsampled) {
-                    FadeFourBlocks(blocks, x == 0, fade, noise_low, noise_high);
-                } else {
-                    noise_low = FadeFirstPairs(noise_low, LeftPairs(before, before, bw), x ? 0x0001 : 0, fade);
-                    noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], bw), 0x0001, fade);
+    BlockNoiseRow row = first_row;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
+        const uint8_t* s = src + r * rows.src_stride;
+        const uint8_t* l = luma + r * rows.luma_stride;
+        uint8_t* d = dst + r * rows.dst_stride;
+        ForEach64<bw, kOverlap>(
+            row, width, vector_end,
+            [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+                __m512i noise_low, noise_high, index_low, index_high;
+                NoiseOf64<bw, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
+                if constexpr (kOverlap == Overlap::kFade) {
+                    // blocks start at 32-bit lanes 0 and 8 of each vector (four blocks) or lane 0
+                    // (two); the row's first has no left
+                    const int16_t* before = blocks[-1];  // (block 0's own where it has none)
+                    if constexpr (kSubsampled) {
+                        FadeFourBlocks(blocks, x == 0, fade, noise_low, noise_high);
+                    } else {
+                        noise_low = FadeFirstPairs(noise_low, LeftPairs(before, before, bw), x ? 0x0001 : 0, fade);
+                        noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], bw), 0x0001, fade);
+                    }
                 }
-            }
-            const __m512i s_low = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + x)));
-            const __m512i s_high =
-                _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + x + 32)));
-            ChromaIndices64<kSubsampled, kFromLuma>(luma, x, s_low, s_high, mults, offset, index_low, index_high);
-            _mm512_storeu_si512(dst + x, AddNoise64<kClip, false>(c, _mm512_packus_epi16(index_low, index_high), s_low,
-                                                                  s_high, noise_low, noise_high));
-        },
-        rest);
+                const __m512i s_low = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + x)));
+                const __m512i s_high =
+                    _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + x + 32)));
+                ChromaIndices64<kSubsampled, kFromLuma>(l, x, s_low, s_high, mults, offset, index_low, index_high);
+                _mm512_storeu_si512(d + x, AddNoise64<kClip, false>(c, _mm512_packus_epi16(index_low, index_high),
+                                                                    s_low, s_high, noise_low, noise_high));
+            },
+            [&](int x, const uint32_t* seams) { rest(r, row, x, seams); });
+    }
 }
 
 // The noise of samples [x, x + 64) of a row whose horizontal overlap is faded in the kernel
