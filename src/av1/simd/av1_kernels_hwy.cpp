@@ -440,6 +440,7 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
 using D8 = hn::ScalableTag<uint8_t>;
 
 #include "av1/simd/blend_u8_avx512-inl.h"
+#include "av1/simd/blend_luma10_avx512-inl.h"
 
 // out[k] = lut[index[k]] for k < count.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleRows<D8>& rows) {
@@ -759,8 +760,9 @@ void BlendLumaRowU8Generic(const uint8_t* src, uint8_t* dst, const BlockNoiseRow
 }
 
 // Above 8 bits the 16-bit lanes hold the samples themselves.
-void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                            const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                            int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
@@ -773,6 +775,33 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
         const int v = src[x] + round2_signed(scales.Scalar(src[x]) * noise.at(x), scaling_shift);
         dst[x] = static_cast<uint16_t>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
+}
+
+#if HWY_TARGET == HWY_AVX3
+// 10 bits in whole 512-bit vectors (blend_luma10_avx512-inl.h); the samples after the last
+// whole 64 the generic way, with the seams of their blocks.
+FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                                          const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                          int max_value) {
+    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto rest = [&](int x, const uint32_t* seams) {
+        BlendLumaRowU16Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, 10,
+                               min_value, max_value);
+    };
+    avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::Luma10Row<decltype(overlap)::value>(src, dst, row, width, scaling, scaling_shift, min_value,
+                                                    max_value, rest);
+    });
+}
+#endif
+
+void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
+        return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+#endif
+    BlendLumaRowU16Generic(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value, max_value);
 }
 
 // The last chroma column of an odd-width subsampled picture pairs the last luma sample with
