@@ -116,7 +116,10 @@ void check_rows(std::mt19937& rng, int bd, int iterations) {
         const av1::ClipLimits clip = av1::clip_limits(u(0, 1), bd, u(0, 2));
         const av1::ChromaScalingIndex index{u(0, 3) == 0, u(-128, 127), u(-128, 127), u(-256, 255)};
         const TemplateNoise luma_noise(luma_width, 32, bd, u(1, 40), mode, rng);
-        const TemplateNoise chroma_noise(chroma_width, 32 >> subx, bd, u(1, 40), mode, rng);
+        // unsubsampled luma with 16-wide noise blocks: subsampled chroma above 8 bits, which the
+        // synthesis hands its shared co-sited luma rows
+        const int chroma_block = subx || u(0, 2) == 0 ? 16 : 32;
+        const TemplateNoise chroma_noise(chroma_width, chroma_block, bd, u(1, 40), mode, rng);
         const bool smooth = u(0, 1);
         const std::vector<Pixel> luma = random_samples<Pixel>(rng, luma_width, bd, smooth);
         const std::vector<Pixel> chroma = random_samples<Pixel>(rng, chroma_width, bd, smooth);

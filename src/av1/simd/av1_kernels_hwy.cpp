@@ -440,7 +440,7 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
 using D8 = hn::ScalableTag<uint8_t>;
 
 #include "av1/simd/blend_u8_avx512-inl.h"
-#include "av1/simd/blend_luma10_avx512-inl.h"
+#include "av1/simd/blend_10bit_avx512-inl.h"
 
 // out[k] = lut[index[k]] for k < count.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleRows<D8>& rows) {
@@ -778,7 +778,7 @@ void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoise
 }
 
 #if HWY_TARGET == HWY_AVX3
-// 10 bits in whole 512-bit vectors (blend_luma10_avx512-inl.h); the samples after the last
+// 10 bits in whole 512-bit vectors (blend_10bit_avx512-inl.h); the samples after the last
 // whole 64 the generic way, with the seams of their blocks.
 FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                                           const ScalingLookup& scaling, int scaling_shift, int min_value,
@@ -883,7 +883,7 @@ FG_AVX512_VBMI void BlendChromaRowsU8Avx512(const uint8_t* src, uint8_t* dst, co
 void BlendLumaRowsU8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise, int width,
                      const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
 #if HWY_TARGET == HWY_AVX3
-    if (avx512::HasAvx512Vbmi())
+    if (noise.block_width == 32 && avx512::HasAvx512Vbmi())
         return BlendLumaRowsU8Avx512(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
 #endif
     BlockNoiseRow row = noise;
@@ -896,7 +896,8 @@ void BlendChromaRowsU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, in
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
 #if HWY_TARGET == HWY_AVX3
-    if (avx512::HasAvx512Vbmi())
+    // (the vector forms take the block width the subsampling gives)
+    if (noise.block_width == (subsampling_x ? 16 : 32) && avx512::HasAvx512Vbmi())
         return BlendChromaRowsU8Avx512(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index, scaling,
                                        scaling_shift, bit_depth, min_value, max_value);
 #endif
@@ -919,9 +920,10 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
                       scaling_shift, bit_depth, min_value, max_value);
 }
 
-void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+void BlendChromaRowU16Generic(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                              const BlockNoiseRow& noise, int width, int subsampling_x,
+                              const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                              int bit_depth, int min_value, int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN int16_t merged[kChunk];
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
@@ -935,6 +937,43 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
         [&](int merged_index, int nz) { return round2_signed(scales.Scalar(merged_index) * nz, scaling_shift); },
         bit_depth, min_value, max_value);
+}
+
+#if HWY_TARGET == HWY_AVX3
+// 10 bits with unsubsampled (or shared co-sited) luma in whole 512-bit vectors
+// (blend_10bit_avx512-inl.h); the samples after the last whole 64 the generic way.
+FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                                            const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
+                                            const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                            int max_value) {
+    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto rest = [&](int x, const uint32_t* seams) {
+        BlendChromaRowU16Generic(src + x, dst + x, luma + x, luma_width - x, avx512::RowFrom(row, x, seams), width - x,
+                                 0, index, scaling, scaling_shift, 10, min_value, max_value);
+    };
+    avx512::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                avx512::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
+                                    decltype(overlap)::value>(src, dst, luma, row, width, index, scaling,
+                                                              scaling_shift, min_value, max_value, rest);
+            });
+        });
+    });
+}
+#endif
+
+void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
+        avx512::HasAvx512Vbmi())
+        return BlendChromaRowU10Avx512(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
+                                       min_value, max_value);
+#endif
+    BlendChromaRowU16Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
+                             bit_depth, min_value, max_value);
 }
 
 // co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
