@@ -7,7 +7,11 @@
 // per difference) is gone. Both outputs are compared: a picture where they differ is an
 // error.
 //
-//   filmgrain_dav1d_compare STREAM.ivf [--json FILE]
+//   [FILMGRAIN_SIMD_TARGET=AVX3|AVX2|SSE4|...] filmgrain_dav1d_compare STREAM.ivf [--json FILE]
+//
+// Which libdav1d it runs is the one CMake found (FILMGRAIN_DAV1D_ROOT, else the system's); the
+// report names its dav1d_version() and filmgrain's dispatch target, since either changes the
+// ratio.
 #include <dav1d/dav1d.h>
 #include <time.h>
 
@@ -15,6 +19,7 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -24,6 +29,7 @@
 
 #include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
+#include "core/simd_targets.hpp"
 #include "filmgrain/av1_params.hpp"
 
 namespace {
@@ -191,16 +197,25 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        // The same switch as the tool's (tools/command_line.cpp), so that both can be measured
+        // on one target.
+        if (const char* target = std::getenv("FILMGRAIN_SIMD_TARGET"); target && *target)
+            if (!simd::force_target(std::string(target)))
+                throw std::runtime_error("FILMGRAIN_SIMD_TARGET=" + std::string(target) + " is not available");
+        const std::string dav1d = dav1d_version(), target = simd::dispatched_target();
         Timings t;
         run(argv[1], t);
         if (t.ours.empty()) throw std::runtime_error("no picture with film grain in '" + std::string(argv[1]) + "'");
         const double d = median(t.dav1d), o = median(t.ours);
-        std::printf("%dx%d %d-bit, %zu pictures with grain: dav1d_apply_grain %.3f ms, filmgrain %.3f ms (medians, "
-                    "thread CPU time, 1 thread); ratio filmgrain/dav1d %.3f; outputs differ on %d picture(s)\n",
-                    t.width, t.height, t.bit_depth, t.ours.size(), d, o, o / d, t.differing);
+        std::printf("%dx%d %d-bit, %zu pictures with grain: dav1d %s dav1d_apply_grain %.3f ms, filmgrain (%s) %.3f "
+                    "ms (medians, thread CPU time, 1 thread); ratio filmgrain/dav1d %.3f; outputs differ on %d "
+                    "picture(s)\n",
+                    t.width, t.height, t.bit_depth, t.ours.size(), dav1d.c_str(), d, target.c_str(), o, o / d,
+                    t.differing);
         if (argc == 4) {
             std::ofstream js(argv[3]);
-            js << "{\"width\": " << t.width << ", \"height\": " << t.height << ", \"bit_depth\": " << t.bit_depth
+            js << "{\"dav1d_version\": \"" << dav1d << "\", \"filmgrain_target\": \"" << target << "\", "
+               << "\"width\": " << t.width << ", \"height\": " << t.height << ", \"bit_depth\": " << t.bit_depth
                << ", \"pictures\": " << t.ours.size() << ", \"differing\": " << t.differing << ", \"dav1d_ms\": [";
             for (std::size_t k = 0; k < t.dav1d.size(); ++k) js << (k ? ", " : "") << t.dav1d[k];
             js << "], \"filmgrain_ms\": [";

@@ -89,6 +89,7 @@ void StripeScratch::reserve(int luma_width, std::size_t co_sited_bytes) {
     if (previous_origins.size() < blocks) previous_origins.resize(blocks);
     if (block_rows.size() < blocks) block_rows.resize(blocks);
     if (previous_block_rows.size() < blocks) previous_block_rows.resize(blocks);
+    if (shared_rows.size() < blocks) shared_rows.resize(blocks);
     if (seams.size() < blocks) seams.resize(blocks);
     for (DrawnOffsets& d : drawn_)
         if (d.bytes.size() < blocks) d.bytes.resize(blocks);
@@ -110,7 +111,7 @@ const uint8_t* StripeScratch::block_offsets(int grain_seed, int stripe, int bloc
 std::size_t StripeScratch::bytes() const {
     return (noise.capacity() + previous.capacity()) * sizeof(int16_t) +
            (origins.capacity() + previous_origins.capacity()) * sizeof(int32_t) +
-           (block_rows.capacity() + previous_block_rows.capacity()) * sizeof(const int16_t*) +
+           (block_rows.capacity() + previous_block_rows.capacity() + shared_rows.capacity()) * sizeof(const int16_t*) +
            seams.capacity() * sizeof(uint32_t) + co_sited_luma.capacity() * sizeof(uint16_t) +
            drawn_[0].bytes.capacity() + drawn_[1].bytes.capacity();
 }
@@ -182,7 +183,9 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     // rows a stripe shares with the one above (overlap_flag: two, one when subsampled
     // vertically) are built in scratch.noise, cross-faded with the previous stripe's bottom
     // rows as build_stripe_noise does.
-    auto blend_plane = [&](int pl, int sx, int sy, int rows, auto&& blend_row) {
+    // blend_rows(i, count, noise, step) blends rows [i, i + count) of the plane's stripe, row
+    // i + k with `noise` moved `k * step` samples down the template (PlaneRows).
+    auto blend_plane = [&](int pl, int sx, int sy, int rows, auto&& blend_rows) {
         const GrainTemplate& tmpl = templates_[pl];
         const int block_w = kBlockSize >> sx;
         const int pw = plane_width(format_, pl, width_);
@@ -192,25 +195,38 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const bool fade_in_kernel = overlap && bit_depth_ <= 10;
         simd::BlockNoiseRow row = kernel_faded_row(sx, bit_depth_);
         row.fade = false;
+        // Where the seams are precomputed (12 bits with overlap), overlap_seams reads every row
+        // through its own pointers; elsewhere `pointers` point at the blocks' first rows, set
+        // once per stripe by first_rows(), and a row only moves row_offset.
+        const bool row_pointers = overlap && !fade_in_kernel;
+        auto first_rows = [&](const int32_t* origins, const int16_t** pointers) {
+            for (int b = 0; b < blocks; ++b) pointers[b] = tmpl.samples.data() + origins[b];
+        };
         // Row `i` of the blocks at `origins`, as it reads the template, through `pointers`.
         auto template_row = [&](const int32_t* origins, int i, const int16_t** pointers) {
             simd::BlockNoiseRow r = row;
-            const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
-            for (int b = 0; b < blocks; ++b) pointers[b] = t + origins[b];
             r.blocks = pointers;
             r.fade = fade_in_kernel;
-            if (overlap && !fade_in_kernel) {
-                overlap_seams(pointers, blocks, sx, bit_depth_, scratch.seams.data());
-                r.seams = scratch.seams.data();
+            if (!row_pointers) {
+                r.row_offset = std::ptrdiff_t(i) * tmpl.width;
+                return r;
             }
+            const int16_t* t = tmpl.samples.data() + std::ptrdiff_t(i) * tmpl.width;
+            for (int b = 0; b < blocks; ++b) pointers[b] = t + origins[b];
+            overlap_seams(pointers, blocks, sx, bit_depth_, scratch.seams.data());
+            r.seams = scratch.seams.data();
             return r;
         };
         // The previous stripe's blocks continue below it for the vertical overlap.
-        if (shared_rows)
+        if (shared_rows) {
             stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe - 1, blocks), blocks, sx, sy,
                                  scratch.previous_origins.data());
+            if (!row_pointers) first_rows(scratch.previous_origins.data(), scratch.previous_block_rows.data());
+            for (int b = 0; b < blocks; ++b) scratch.shared_rows[std::size_t(b)] = scratch.noise.data() + b * block_w;
+        }
         stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe, blocks), blocks, sx, sy,
                              scratch.origins.data());
+        if (!row_pointers) first_rows(scratch.origins.data(), scratch.block_rows.data());
         const int stripe_h = kBlockSize >> sy;
         for (int i = 0; i < shared_rows; ++i) {
             int16_t* cur = scratch.noise.data() + pitch * std::size_t(i);
@@ -230,18 +246,21 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             simd::assemble_noise_row(template_row(scratch.origins.data(), i, scratch.block_rows.data()), pw, cur);
             simd::cross_fade_row(above, cur, pw, w.old_weight, w.new_weight, range.min, range.max);
         }
-        for (int i = 0; i < rows; ++i) {
-            if (i < shared_rows) {
-                // The faded row, contiguous: no overlap left to apply.
-                simd::BlockNoiseRow r = row;
-                for (int b = 0; b < blocks; ++b)
-                    scratch.block_rows[std::size_t(b)] = scratch.noise.data() + pitch * std::size_t(i) + b * block_w;
-                r.blocks = scratch.block_rows.data();
-                blend_row(i, r);
-            } else {
-                blend_row(i, template_row(scratch.origins.data(), i, scratch.block_rows.data()));
-            }
+        for (int i = 0; i < shared_rows; ++i) {
+            // The faded row, contiguous: no overlap left to apply.
+            simd::BlockNoiseRow r = row;
+            r.blocks = scratch.shared_rows.data();
+            r.row_offset = std::ptrdiff_t(pitch) * i;
+            blend_rows(i, 1, r, 0);
         }
+        // The others read the template, one template row further down per row: all in one call
+        // (the kernels' constants made once), unless every row needs its own pointers.
+        if (row_pointers)
+            for (int i = shared_rows; i < rows; ++i)
+                blend_rows(i, 1, template_row(scratch.origins.data(), i, scratch.block_rows.data()), 0);
+        else if (rows > shared_rows)
+            blend_rows(shared_rows, rows - shared_rows,
+                       template_row(scratch.origins.data(), shared_rows, scratch.block_rows.data()), tmpl.width);
     };
 
     // Subsampled horizontally above 8 bits, both chroma planes scale by the same luma averages
@@ -250,7 +269,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
     // blending it (in place, before it is overwritten), while the row is in cache and the
     // look-up's work hides the picture's memory; chroma then comes after luma. (At 8 bits,
     // where the chroma kernels average a pair in three operations per vector, sharing measured
-    // no faster, so 8 bits keep chroma first and average in the kernels.)
+    // no faster, so 8 bits average in the kernels; they take luma first only out of place.)
     const bool share_co_sited = co_sited_bytes() != 0;
     const int chroma_width = plane_width(format_, 1, width_);
     Pixel* co_sited = reinterpret_cast<Pixel*>(scratch.co_sited_luma.data());  // sized by reserve()
@@ -264,17 +283,20 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         const PlaneView& s = src.planes[pl];
         const PlaneView& d = dst.planes[pl];
         if (pl == 0) {
-            blend_plane(0, 0, 0, rows, [&](int i, const simd::BlockNoiseRow& nz) {
-                const int y = y0 + i;
-                if (share_co_sited && (i & ((1 << suby_) - 1)) == 0) make_co_sited_row(y, i >> suby_);
-                if constexpr (sizeof(Pixel) == 1)
-                    simd::blend_luma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
-                                            scaling_[0], scaling_shift, clip_.min_value,
-                                            clip_.max_luma);
-                else
-                    simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), nz, width_,
-                                             scaling_[0], scaling_shift, bit_depth_,
-                                             clip_.min_value, clip_.max_luma);
+            blend_plane(0, 0, 0, rows, [&](int i0, int count, const simd::BlockNoiseRow& nz, std::ptrdiff_t step) {
+                if constexpr (sizeof(Pixel) == 1) {
+                    const simd::PlaneRows in_rows{count, s.stride, d.stride, 0, step};
+                    simd::blend_luma_rows_u8(s.row<Pixel>(y0 + i0), d.row<Pixel>(y0 + i0), in_rows, nz, width_,
+                                             scaling_[0], scaling_shift, clip_.min_value, clip_.max_luma);
+                } else {
+                    simd::BlockNoiseRow r = nz;
+                    for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
+                        const int y = y0 + i;
+                        if (share_co_sited && (i & ((1 << suby_) - 1)) == 0) make_co_sited_row(y, i >> suby_);
+                        simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), r, width_, scaling_[0],
+                                                 scaling_shift, bit_depth_, clip_.min_value, clip_.max_luma);
+                    }
+                }
             });
             co_sited_made = share_co_sited;
             return;
@@ -283,21 +305,32 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
             for (int i = 0; i < rows; ++i) make_co_sited_row((y0 + i) << suby_, i);
             co_sited_made = true;
         }
-        blend_plane(pl, subx_, suby_, rows, [&](int i, const simd::BlockNoiseRow& nz) {
-            const int y = y0 + i;
-            const Pixel* luma =
-                share_co_sited ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
-            const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
-            if constexpr (sizeof(Pixel) == 1)
-                simd::blend_chroma_row_u8(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, sx,
-                                          chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
-                                          clip_.min_value, clip_.max_chroma);
-            else
-                simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, nz, pw, sx,
-                                           chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
+        blend_plane(pl, subx_, suby_, rows, [&](int i0, int count, const simd::BlockNoiseRow& nz, std::ptrdiff_t step) {
+            if constexpr (sizeof(Pixel) == 1) {  // (no shared co-sited rows at 8 bits)
+                const simd::PlaneRows in_rows{count, s.stride, d.stride, src.planes[0].stride << suby_, step};
+                simd::blend_chroma_rows_u8(s.row<Pixel>(y0 + i0), d.row<Pixel>(y0 + i0),
+                                           src.planes[0].row<Pixel>((y0 + i0) << suby_), width_, in_rows, nz, pw,
+                                           subx_, chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                            clip_.min_value, clip_.max_chroma);
+                return;
+            }
+            simd::BlockNoiseRow r = nz;
+            for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
+                const int y = y0 + i;
+                const Pixel* luma =
+                    share_co_sited ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
+                const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
+                if constexpr (sizeof(Pixel) > 1)
+                    simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, r, pw, sx,
+                                               chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
+                                               clip_.min_value, clip_.max_chroma);
+            }
         });
-    }, share_co_sited);
+    // Luma first where that is safe (out of place, or the co-sited rows made before luma is
+    // overwritten): the chroma rows then read their luma while the luma pass has it in cache,
+    // instead of fetching it for chroma and again for luma (8-bit 1080p in one process: the
+    // per-frame cost fell by about 5 %).
+    }, share_co_sited || src.planes[0].data != dst.planes[0].data);
 }
 
 void Av1SynthesisContext::apply_stripes(const FrameView& src, const FrameView& dst, int s0, int s1, Kernels kernels,

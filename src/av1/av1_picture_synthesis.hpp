@@ -33,6 +33,8 @@ struct StripeScratch {
     std::vector<int16_t> previous;
     std::vector<int32_t> origins, previous_origins;
     std::vector<const int16_t*> block_rows, previous_block_rows;
+    // Each block's first sample in the rows shared with the stripe above (made in `noise`).
+    std::vector<const int16_t*> shared_rows;
     std::vector<uint32_t> seams;
     // The stripe's co-sited luma averages (co_sited_luma_row) of horizontally subsampled
     // chroma above 8 bits, shared by both chroma planes: a stripe's chroma rows of samples.

@@ -12,6 +12,7 @@
 // (pmulhrsw) in 16-bit lanes of the scale shifted up to q15 (scale <= 255 and shift >= 8
 // keep it below 2^15).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 
 #include "av1/grain_blending.hpp"
@@ -25,23 +26,37 @@ namespace filmgrain::av1::simd {
 // first; seams[0] holds blocks[0][0..1] unchanged) or, when seams is null and fade is set,
 // computed on the fly as clamp((left * fade_old[k] + own * fade_new[k] + 16) >> 5) (only up to
 // 10 bits, where that sum fits 16-bit lanes).
+//
+// Block b's row starts at blocks[b] + row_offset: a stripe points `blocks` at its blocks' first
+// rows once and moves row_offset down its rows (rather than rewriting every pointer per row).
 struct BlockNoiseRow {
     const int16_t* const* blocks = nullptr;
+    std::ptrdiff_t row_offset = 0;
     const uint32_t* seams = nullptr;
     int block_width = 32;  // 32 >> subsampling_x
     bool fade = false;
     int16_t fade_old[2] = {0, 0}, fade_new[2] = {32, 32};
     int16_t gmin = -128, gmax = 127;
 
+    const int16_t* block(int b) const { return blocks[b] + row_offset; }
+
     int16_t at(int x) const {
         const int b = x / block_width, k = x - b * block_width;
         if (seams && k < 2) return int16_t(uint16_t(seams[b] >> (16 * k)));
         if (fade && b > 0 && k < 2) {
-            const int v = (blocks[b - 1][block_width + k] * fade_old[k] + blocks[b][k] * fade_new[k] + 16) >> 5;
+            const int v = (block(b - 1)[block_width + k] * fade_old[k] + block(b)[k] * fade_new[k] + 16) >> 5;
             return int16_t(v < gmin ? gmin : v > gmax ? gmax : v);
         }
-        return blocks[b][k];
+        return block(b)[k];
     }
+};
+
+// Rows [0, count) of a plane for the *_rows kernels: row r reads src + r * src_stride (bytes)
+// and the luma co-sited with it at luma + r * luma_stride, writes dst + r * dst_stride, and
+// takes the noise row with row_offset + r * noise_step (the next template row).
+struct PlaneRows {
+    int count = 1;
+    std::ptrdiff_t src_stride = 0, dst_stride = 0, luma_stride = 0, noise_step = 0;
 };
 
 // Twins of blend_luma_row.
@@ -50,6 +65,11 @@ void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& no
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 
+// blend_luma_row_u8 of each of rows.count rows, one call for all (the row loop inside the
+// target's kernel, its constants made once).
+void blend_luma_rows_u8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                        int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
+
 // Twins of blend_chroma_row.
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
@@ -57,6 +77,12 @@ void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, 
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                           const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+
+// blend_chroma_row_u8 of each of rows.count rows, one call for all.
+void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                          const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                          const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                          int bit_depth, int min_value, int max_value);
 
 // Twin of co_sited_luma_row above 8 bits (where the synthesis shares it between the chroma
 // planes).

@@ -54,7 +54,7 @@ HWY_INLINE hn::Vec<D16> FadeOfBlock(D16 d16, const BlockNoiseRow& row, int b, hn
                                     const FadeConstants& c) {
     const hn::Repartition<uint32_t, D16> d32;
     uint32_t left_pair;
-    std::memcpy(&left_pair, row.blocks[b - 1] + row.block_width, sizeof left_pair);
+    std::memcpy(&left_pair, row.block(b - 1) + row.block_width, sizeof left_pair);
     const auto left = hn::BitCast(d16, hn::Set(d32, left_pair));
     const auto sum = hn::Add(hn::Mul(left, c.w_old), hn::Mul(own, c.w_new));
     return hn::Min(hn::Max(hn::MulFixedPoint15(sum, c.round), c.gmin), c.gmax);
@@ -84,7 +84,7 @@ HWY_INLINE void WithFirstOfBlock(const BlockNoiseRow& row, const FadeConstants& 
 // Lanes [j, j + Lanes) of block b's row, its first vector (j = 0) with the horizontal
 // overlap. At least two lanes where the row overlaps.
 HWY_INLINE hn::Vec<D16> BlockNoiseAt(D16 d16, const BlockNoiseRow& row, int b, int j, const FadeConstants& fade) {
-    const auto own = hn::LoadU(d16, row.blocks[b] + j);
+    const auto own = hn::LoadU(d16, row.block(b) + j);
     return j == 0 ? FirstNoiseOfBlock(d16, row, b, own, fade) : own;
 }
 
@@ -139,12 +139,12 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
                     for (; k + 2 * n <= count; k += 2 * n) {
                         hn::Vec<D16> s0, s1;
                         if constexpr (decltype(one_block)::value) {
-                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.blocks[b])));
-                            s1 = sum(k + n, hn::LoadU(d16, row.blocks[b] + n));
+                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.block(b))));
+                            s1 = sum(k + n, hn::LoadU(d16, row.block(b) + n));
                             b += 1;
                         } else {
-                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.blocks[b])));
-                            s1 = sum(k + n, first_of_block(b + 1, hn::LoadU(d16, row.blocks[b + 1])));
+                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.block(b))));
+                            s1 = sum(k + n, first_of_block(b + 1, hn::LoadU(d16, row.block(b + 1))));
                             b += 2;
                         }
                         __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi16(s0.raw, s1.raw), 0xD8);
@@ -173,7 +173,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
         auto whole_blocks = [&](auto vectors, auto first_of_block) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(vectors)::value;
             for (; k + kVectors * n <= count; k += kVectors * n, ++b) {
-                const int16_t* own = row.blocks[b];
+                const int16_t* own = row.block(b);
                 blend(k, first_of_block(b, hn::LoadU(d16, own)));
                 for (int v = 1; v < kVectors; ++v) blend(k + v * n, hn::LoadU(d16, own + v * n));
             }
@@ -190,7 +190,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
         }
     }
     for (; k < count; k += bw, ++b) {
-        const int16_t* own = row.blocks[b];
+        const int16_t* own = row.block(b);
         const int in_block = std::min(bw, count - k);
         int j = 0;
         if (overlapped && n < 2) {
@@ -438,6 +438,9 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
 }
 
 using D8 = hn::ScalableTag<uint8_t>;
+
+#include "av1/simd/blend_u8_avx512-inl.h"
+#include "av1/simd/blend_10bit_avx512-inl.h"
 
 // out[k] = lut[index[k]] for k < count.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleRows<D8>& rows) {
@@ -739,8 +742,8 @@ private:
 
 // 8 bits: scale * noise in 16-bit lanes (255 * 128 fits), rounded by pmulhrsw with the
 // scale shifted up to q15.
-void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width, const ScalingLookup& scaling,
-                    int scaling_shift, int min_value, int max_value) {
+void BlendLumaRowU8Generic(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                           const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     HWY_ALIGN uint8_t scale[kChunk];
@@ -757,8 +760,9 @@ void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise
 }
 
 // Above 8 bits the 16-bit lanes hold the samples themselves.
-void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                            const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                            int max_value) {
     const int n = int(hn::Lanes(D16()));
     const int vec_end = width / n * n;
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
@@ -773,6 +777,33 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
     }
 }
 
+#if HWY_TARGET == HWY_AVX3
+// 10 bits in whole 512-bit vectors (blend_10bit_avx512-inl.h); the samples after the last
+// whole 64 the generic way, with the seams of their blocks.
+FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                                          const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                          int max_value) {
+    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto rest = [&](int x, const uint32_t* seams) {
+        BlendLumaRowU16Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, 10,
+                               min_value, max_value);
+    };
+    avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::Luma10Row<decltype(overlap)::value>(src, dst, row, width, scaling, scaling_shift, min_value,
+                                                    max_value, rest);
+    });
+}
+#endif
+
+void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
+        return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+#endif
+    BlendLumaRowU16Generic(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value, max_value);
+}
+
 // The last chroma column of an odd-width subsampled picture pairs the last luma sample with
 // itself; that column is left to the scalar tail.
 inline int ChromaVectorEnd(int width, int luma_width, int subsampling_x) {
@@ -781,9 +812,10 @@ inline int ChromaVectorEnd(int width, int luma_width, int subsampling_x) {
     return vec_width / n * n;
 }
 
-void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
-                      const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+void BlendChromaRowU8Generic(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                             const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                             const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                             int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN uint8_t merged[kChunk];
     HWY_ALIGN uint8_t scale[kChunk];
@@ -800,9 +832,98 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
         min_value, max_value);
 }
 
-void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+#if HWY_TARGET == HWY_AVX3
+// Whole 512-bit vectors with VBMI byte permutes (blend_u8_avx512-inl.h); the samples after
+// the last whole 64 of a row go to the generic kernels, with the seams of their blocks.
+FG_AVX512_VBMI void BlendLumaRowsU8Avx512(const uint8_t* src, uint8_t* dst, const PlaneRows& rows,
+                                          const BlockNoiseRow& noise, int width, const ScalingLookup& scaling,
+                                          int scaling_shift, int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the byte stores cannot alias it
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        BlendLumaRowU8Generic(src + r * rows.src_stride + x, dst + r * rows.dst_stride + x,
+                              avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, min_value, max_value);
+    };
+    avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::LumaRows<decltype(overlap)::value, decltype(clip)::value>(
+                src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
+        });
+    });
+}
+
+FG_AVX512_VBMI void BlendChromaRowsU8Avx512(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                                            const PlaneRows& rows, const BlockNoiseRow& noise, int width,
+                                            int subsampling_x, const ChromaScalingIndex& index,
+                                            const ScalingLookup& scaling, int scaling_shift, int bit_depth,
+                                            int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the byte stores cannot alias it
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        BlendChromaRowU8Generic(src + r * rows.src_stride + x, dst + r * rows.dst_stride + x,
+                                luma + r * rows.luma_stride + (x << subsampling_x), luma_width - (x << subsampling_x),
+                                avx512::RowFrom(row, x, seams), width - x, subsampling_x, index, scaling,
+                                scaling_shift, bit_depth, min_value, max_value);
+    };
+    avx512::WithFlag(subsampling_x != 0, [&](auto subsampled) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                    avx512::ChromaRows<decltype(subsampled)::value, decltype(from_luma)::value,
+                                       decltype(overlap)::value, decltype(clip)::value>(
+                        src, dst, luma, luma_width, rows, first, width, index, scaling, scaling_shift, min_value,
+                        max_value, rest);
+                });
+            });
+        });
+    });
+}
+#endif
+
+// Row by row where no target form takes several (each row one call of the same target: no
+// dispatch per row).
+void BlendLumaRowsU8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise, int width,
+                     const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (noise.block_width == 32 && avx512::HasAvx512Vbmi())
+        return BlendLumaRowsU8Avx512(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
+#endif
+    BlockNoiseRow row = noise;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
+        BlendLumaRowU8Generic(src + r * rows.src_stride, dst + r * rows.dst_stride, row, width, scaling,
+                              scaling_shift, min_value, max_value);
+}
+
+void BlendChromaRowsU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const PlaneRows& rows,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    // (the vector forms take the block width the subsampling gives)
+    if (noise.block_width == (subsampling_x ? 16 : 32) && avx512::HasAvx512Vbmi())
+        return BlendChromaRowsU8Avx512(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index, scaling,
+                                       scaling_shift, bit_depth, min_value, max_value);
+#endif
+    BlockNoiseRow row = noise;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
+        BlendChromaRowU8Generic(src + r * rows.src_stride, dst + r * rows.dst_stride, luma + r * rows.luma_stride,
+                                luma_width, row, width, subsampling_x, index, scaling, scaling_shift, bit_depth,
+                                min_value, max_value);
+}
+
+void BlendLumaRowU8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
+                    const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    BlendLumaRowsU8(src, dst, PlaneRows{}, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+
+void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                      const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+    BlendChromaRowsU8(src, dst, luma, luma_width, PlaneRows{}, noise, width, subsampling_x, index, scaling,
+                      scaling_shift, bit_depth, min_value, max_value);
+}
+
+void BlendChromaRowU16Generic(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                              const BlockNoiseRow& noise, int width, int subsampling_x,
+                              const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                              int bit_depth, int min_value, int max_value) {
     const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
     HWY_ALIGN int16_t merged[kChunk];
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
@@ -816,6 +937,43 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         src, dst, luma, luma_width, noise, vec_end, width, subsampling_x, index,
         [&](int merged_index, int nz) { return round2_signed(scales.Scalar(merged_index) * nz, scaling_shift); },
         bit_depth, min_value, max_value);
+}
+
+#if HWY_TARGET == HWY_AVX3
+// 10 bits with unsubsampled (or shared co-sited) luma in whole 512-bit vectors
+// (blend_10bit_avx512-inl.h); the samples after the last whole 64 the generic way.
+FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                                            const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
+                                            const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                            int max_value) {
+    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto rest = [&](int x, const uint32_t* seams) {
+        BlendChromaRowU16Generic(src + x, dst + x, luma + x, luma_width - x, avx512::RowFrom(row, x, seams), width - x,
+                                 0, index, scaling, scaling_shift, 10, min_value, max_value);
+    };
+    avx512::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+            avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                avx512::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
+                                    decltype(overlap)::value>(src, dst, luma, row, width, index, scaling,
+                                                              scaling_shift, min_value, max_value, rest);
+            });
+        });
+    });
+}
+#endif
+
+void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
+        avx512::HasAvx512Vbmi())
+        return BlendChromaRowU10Avx512(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
+                                       min_value, max_value);
+#endif
+    BlendChromaRowU16Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
+                             bit_depth, min_value, max_value);
 }
 
 // co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
@@ -864,8 +1022,8 @@ void AssembleNoiseRow(const BlockNoiseRow& noise_row, int width, int16_t* out) {
 // The vertical overlap fused with the assembly of both rows: no row is written twice. Up to
 // 10 bits the weighted sum fits 16-bit lanes (|noise| <= 512, weights summing to at most 45)
 // and Round2(sum, 5) is a rounding high multiply by 1 << 10, as in FirstNoiseOfBlock.
-void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width, int old_weight,
-                           int new_weight, int16_t* out) {
+void AssembleCrossFadedRowGeneric(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width,
+                                  int old_weight, int new_weight, int16_t* out) {
     const D16 d16;
     const int n = int(hn::Lanes(d16));
     const BlockNoiseRow above = old_noise, own = new_noise;  // local: the stores cannot alias them
@@ -884,6 +1042,47 @@ void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& 
         const int v = (above.at(x) * old_weight + own.at(x) * new_weight + 16) >> 5;
         out[x] = int16_t(v < own.gmin ? own.gmin : v > own.gmax ? own.gmax : v);
     }
+}
+
+#if HWY_TARGET == HWY_AVX3
+// Whole 512-bit vectors (blend_u8_avx512-inl.h), for the block widths the synthesis makes; the
+// samples after the last whole 64 (with the seams of their blocks) the generic way.
+FG_AVX512_VBMI void AssembleCrossFadedRowAvx512(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise,
+                                                int width, int old_weight, int new_weight, int16_t* out) {
+    auto rest = [&](int x) {
+        auto seams = [&](const BlockNoiseRow& row, uint32_t* faded) {
+            const int bw = row.block_width;
+            for (int b = x / bw, k = 0; b * bw < width; ++b, ++k)
+                faded[k] = uint32_t(uint16_t(row.at(b * bw))) | uint32_t(uint16_t(row.at(b * bw + 1))) << 16;
+            return row.fade ? faded : nullptr;
+        };
+        uint32_t above[64 / 16 + 1], own[64 / 16 + 1];
+        AssembleCrossFadedRowGeneric(avx512::RowFrom(old_noise, x, seams(old_noise, above)),
+                                     avx512::RowFrom(new_noise, x, seams(new_noise, own)), width - x, old_weight,
+                                     new_weight, out + x);
+    };
+    avx512::WithFlag(new_noise.fade, [&](auto fade) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        if (new_noise.block_width == 16)
+            avx512::CrossFadedRow<16, decltype(fade)::value>(old_noise, new_noise, width, old_weight, new_weight, out,
+                                                             rest);
+        else
+            avx512::CrossFadedRow<32, decltype(fade)::value>(old_noise, new_noise, width, old_weight, new_weight, out,
+                                                             rest);
+    });
+}
+#endif
+
+void AssembleCrossFadedRow(const BlockNoiseRow& old_noise, const BlockNoiseRow& new_noise, int width, int old_weight,
+                           int new_weight, int16_t* out) {
+#if HWY_TARGET == HWY_AVX3
+    // both rows alike (the same plane): no given seams, fade or not, blocks of 16 or 32
+    const bool whole_vectors = !old_noise.seams && !new_noise.seams && old_noise.fade == new_noise.fade &&
+                               old_noise.block_width == new_noise.block_width &&
+                               (new_noise.block_width == 16 || new_noise.block_width == 32);
+    if (whole_vectors && avx512::HasAvx512Vbmi())
+        return AssembleCrossFadedRowAvx512(old_noise, new_noise, width, old_weight, new_weight, out);
+#endif
+    AssembleCrossFadedRowGeneric(old_noise, new_noise, width, old_weight, new_weight, out);
 }
 
 void CrossFadeRow(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
@@ -916,6 +1115,8 @@ namespace filmgrain::av1::simd {
 HWY_EXPORT(BlendLumaRowU8);
 HWY_EXPORT(BlendLumaRowU16);
 HWY_EXPORT(BlendChromaRowU8);
+HWY_EXPORT(BlendLumaRowsU8);
+HWY_EXPORT(BlendChromaRowsU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
 HWY_EXPORT(CoSitedLumaRowU16);
@@ -925,6 +1126,17 @@ HWY_EXPORT(AssembleCrossFadedRow);
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void blend_luma_rows_u8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                        int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowsU8)(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
+}
+void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                          const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                          const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                          int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowsU8)(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index,
+                                            scaling, scaling_shift, bit_depth, min_value, max_value);
 }
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {

@@ -1,0 +1,138 @@
+// 10-bit AV1 noise application (AV1 7.18.3.5) in whole 512-bit vectors, for the AVX3 target of
+// av1_kernels_hwy.cpp on CPUs with AVX512-VBMI: twins of blend_luma_row and blend_chroma_row at
+// 10 bits, bit-equal to them. Included after blend_u8_avx512-inl.h (whose noise and overlap helpers
+// it shares), on the AVX3 pass only.
+//
+// The scale of a 10-bit sample is scale_lut over the whole range (ScalingLookup::full_table(),
+// 1024 bytes, exact by construction). Sixteen registers hold it; eight two-table byte permutes
+// (vpermi2b, 128 entries each, indexed by the sample's low 7 bits) and three masked merges by
+// its top 3 bits look 64 samples up at once, whatever the picture's content (the generic
+// kernels' shuffle chains are fast only where neighbouring samples share table rows).
+#if HWY_TARGET == HWY_AVX3
+
+namespace avx512 {
+
+// full_table() of a 10-bit ScalingLookup in sixteen registers.
+struct Lut1024 {
+    __m512i t[16];
+};
+FG_AVX512_VBMI inline void LoadLut1024(const uint8_t* table, Lut1024& lut) {
+    for (int k = 0; k < 16; ++k) lut.t[k] = _mm512_loadu_si512(table + 64 * k);
+}
+// table[index] for 64 indices given as their low 7 bits and their top 3 bits (bytes 0..7).
+FG_AVX512_VBMI inline __m512i LookUp1024(const Lut1024& lut, __m512i low7, __m512i top3) {
+    __m512i part[8];
+    for (int k = 0; k < 8; ++k) part[k] = _mm512_permutex2var_epi8(lut.t[2 * k], low7, lut.t[2 * k + 1]);
+    const __mmask64 bit0 = _mm512_test_epi8_mask(top3, _mm512_set1_epi8(1));
+    const __mmask64 bit1 = _mm512_test_epi8_mask(top3, _mm512_set1_epi8(2));
+    const __mmask64 bit2 = _mm512_test_epi8_mask(top3, _mm512_set1_epi8(4));
+    for (int k = 0; k < 4; ++k) part[k] = _mm512_mask_mov_epi8(part[2 * k], bit0, part[2 * k + 1]);
+    for (int k = 0; k < 2; ++k) part[k] = _mm512_mask_mov_epi8(part[2 * k], bit1, part[2 * k + 1]);
+    return _mm512_mask_mov_epi8(part[0], bit2, part[1]);
+}
+
+// The q15 scales of 64 samples in sample order (two vectors of 16-bit lanes) from their
+// scaling indices so: the 10-bit look-up of Luma10Row.
+FG_AVX512_VBMI inline void Scales1024(const Lut1024& lut, __m512i index_low, __m512i index_high, __m128i up_shift,
+                                      __m512i& scale_low, __m512i& scale_high) {
+    const __m512i last = _mm512_set1_epi16(1023), low_bits = _mm512_set1_epi16(0x7F), zero = _mm512_setzero_si512();
+    // indices beyond 10 bits read the last entry, as ScalingLookup does
+    const __m512i i_low = _mm512_min_epu16(index_low, last), i_high = _mm512_min_epu16(index_high, last);
+    const __m512i low7 = _mm512_packus_epi16(_mm512_and_si512(i_low, low_bits), _mm512_and_si512(i_high, low_bits));
+    const __m512i top3 = _mm512_packus_epi16(_mm512_srli_epi16(i_low, 7), _mm512_srli_epi16(i_high, 7));
+    const __m512i scale = LookUp1024(lut, low7, top3);
+    scale_low = _mm512_sll_epi16(_mm512_unpacklo_epi8(scale, zero), up_shift);
+    scale_high = _mm512_sll_epi16(_mm512_unpackhi_epi8(scale, zero), up_shift);
+}
+
+// Twin of blend_luma_row at 10 bits; `rest(x, seams)` blends samples [x, width) the generic
+// way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
+// byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
+template <Overlap kOverlap, class Rest>
+FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
+                              const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                              Rest&& rest) {
+    Lut1024 lut;
+    LoadLut1024(scaling.full_table(), lut);
+    const SeamFade fade = MakeSeamFade(row);
+    const __m128i up_shift = _mm_cvtsi32_si128(15 - scaling_shift);
+    const __m512i vmin = _mm512_set1_epi16(int16_t(min_value)), vmax = _mm512_set1_epi16(int16_t(max_value));
+    ForEach64<32, kOverlap>(
+        row, width, width,
+        [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            __m512i noise_low, noise_high;
+            NoiseOf64<32, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
+            if constexpr (kOverlap == Overlap::kFade) {
+                // (|noise| <= 512 at 10 bits: the fade's sums still fit 16-bit lanes)
+                noise_low = FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, fade);
+                noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
+            }
+            const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
+            __m512i scale_low, scale_high;
+            Scales1024(lut, s_low, s_high, up_shift, scale_low, scale_high);
+            // Round2(scale * noise, shift) as a rounding high multiply of the q15 scale
+            const __m512i v_low = _mm512_add_epi16(s_low, _mm512_mulhrs_epi16(scale_low, noise_low));
+            const __m512i v_high = _mm512_add_epi16(s_high, _mm512_mulhrs_epi16(scale_high, noise_high));
+            _mm512_storeu_si512(dst + x, _mm512_min_epi16(_mm512_max_epi16(v_low, vmin), vmax));
+            _mm512_storeu_si512(dst + x + 32, _mm512_min_epi16(_mm512_max_epi16(v_high, vmin), vmax));
+        },
+        rest);
+}
+
+// Twin of blend_chroma_row at 10 bits with unsubsampled luma (the synthesis hands subsampled
+// chroma its shared co-sited luma rows so); `rest(x, seams)` blends samples [x, width) the
+// generic way. The scaling index of chroma_scaling_index: luma * luma_mult + chroma * mult as
+// one multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits),
+// >> 6, and the pack back to 16 bits restores the sample order the interleave split.
+template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
+FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row,
+                                int width, const ChromaScalingIndex& index, const ScalingLookup& scaling,
+                                int scaling_shift, int min_value, int max_value, Rest&& rest) {
+    Lut1024 lut;
+    LoadLut1024(scaling.full_table(), lut);
+    const SeamFade fade = MakeSeamFade(row);
+    const __m128i up_shift = _mm_cvtsi32_si128(15 - scaling_shift);
+    const __m512i mults =
+        _mm512_set1_epi32(int32_t(uint32_t(uint16_t(index.luma_mult)) | uint32_t(uint16_t(index.mult)) << 16));
+    const __m512i offset = _mm512_set1_epi16(int16_t(index.offset * 4));
+    const __m512i zero = _mm512_setzero_si512(), last = _mm512_set1_epi16(1023);
+    const __m512i vmin = _mm512_set1_epi16(int16_t(min_value)), vmax = _mm512_set1_epi16(int16_t(max_value));
+    auto merged = [&](__m512i l, __m512i s) FG_AVX512_VBMI {
+        const __m512i lo = _mm512_srai_epi32(_mm512_madd_epi16(_mm512_unpacklo_epi16(l, s), mults), 6);
+        const __m512i hi = _mm512_srai_epi32(_mm512_madd_epi16(_mm512_unpackhi_epi16(l, s), mults), 6);
+        const __m512i m = _mm512_add_epi16(_mm512_packs_epi32(lo, hi), offset);
+        return _mm512_min_epi16(_mm512_max_epi16(m, zero), last);
+    };
+    ForEach64<kBlockWidth, kOverlap>(
+        row, width, width,
+        [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            __m512i noise_low, noise_high;
+            NoiseOf64<kBlockWidth, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
+            if constexpr (kOverlap == Overlap::kFade) {
+                if constexpr (kBlockWidth == 16) {
+                    FadeFourBlocks(blocks, x == 0, fade, noise_low, noise_high);
+                } else {
+                    noise_low =
+                        FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, fade);
+                    noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
+                }
+            }
+            const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
+            __m512i i_low = _mm512_loadu_si512(luma + x), i_high = _mm512_loadu_si512(luma + x + 32);
+            if constexpr (!kFromLuma) {
+                i_low = merged(i_low, s_low);
+                i_high = merged(i_high, s_high);
+            }
+            __m512i scale_low, scale_high;
+            Scales1024(lut, i_low, i_high, up_shift, scale_low, scale_high);
+            const __m512i v_low = _mm512_add_epi16(s_low, _mm512_mulhrs_epi16(scale_low, noise_low));
+            const __m512i v_high = _mm512_add_epi16(s_high, _mm512_mulhrs_epi16(scale_high, noise_high));
+            _mm512_storeu_si512(dst + x, _mm512_min_epi16(_mm512_max_epi16(v_low, vmin), vmax));
+            _mm512_storeu_si512(dst + x + 32, _mm512_min_epi16(_mm512_max_epi16(v_high, vmin), vmax));
+        },
+        rest);
+}
+
+}  // namespace avx512
+
+#endif  // HWY_TARGET == HWY_AVX3

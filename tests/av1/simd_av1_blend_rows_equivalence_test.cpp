@@ -1,0 +1,244 @@
+// Checkasm-style equivalence of the optimized AV1 row blends (av1/simd/av1_kernels.hpp,
+// including the 512-bit VBMI form of the AVX3 target at 8 bits) with the scalar references
+// blend_luma_row / blend_chroma_row (grain_blending.hpp), for every vector target this CPU
+// runs (each forced in turn), the way the synthesis hands them their noise: every block's
+// rows in one grain-template-like buffer, the row chosen by row_offset. Covers rows of full
+// HD width and beyond (many 64-sample steps and every tail length), each form of the
+// horizontal overlap (none, given seams, faded in the kernel), every clip, chroma with and
+// without subsampling and scaling from luma, odd luma widths, and in place.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "av1/block_synthesis.hpp"
+#include "av1/grain_blending.hpp"
+#include "av1/scaling_lookup.hpp"
+#include "av1/simd/av1_kernels.hpp"
+#include "forced_simd_target.hpp"
+
+using namespace filmgrain;
+
+namespace {
+
+class SimdAv1BlendRowsEquivalence : public test_support::ForcedSimdTarget<20261125u> {};
+
+// A template-like buffer of `rows` rows and the blocks of a picture row at random offsets in
+// it, as stripe_block_origins places them: block b of row i is blocks[b] + i * pitch.
+struct TemplateNoise {
+    int pitch = 0;
+    std::vector<int16_t> samples;
+    std::vector<const int16_t*> blocks;
+    std::vector<uint32_t> seams;
+    av1::simd::BlockNoiseRow row;
+    std::vector<int16_t> flat;  // row.at(x), as the references take it
+
+    TemplateNoise(int width, int block_width, int bd, int rows, int mode, std::mt19937& rng) {
+        auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+        const int gmax = (128 << (bd - 8)) - 1;
+        pitch = block_width + 2 + 16 + u(0, 7);  // room for the block, its overlap and an offset
+        samples.resize(std::size_t(pitch) * std::size_t(rows));
+        for (auto& v : samples) v = int16_t(u(-gmax - 1, gmax));
+        const int count = (width + block_width - 1) / block_width;
+        for (int b = 0; b < count; b++) blocks.push_back(samples.data() + u(0, 16));
+        row.blocks = blocks.data();
+        row.block_width = block_width;
+        row.row_offset = std::ptrdiff_t(u(0, rows - 1)) * pitch;
+        row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);
+        const bool subsampled = block_width == 16;
+        if (mode == 1) {
+            for (int b = 0; b < count; b++)
+                seams.push_back(uint32_t(uint16_t(u(-gmax - 1, gmax))) | uint32_t(uint16_t(u(-gmax - 1, gmax))) << 16);
+            row.seams = seams.data();
+        } else if (mode == 2) {
+            row.fade = true;
+            row.fade_old[0] = int16_t(subsampled ? 23 : 27), row.fade_old[1] = int16_t(subsampled ? 0 : 17);
+            row.fade_new[0] = int16_t(subsampled ? 22 : 17), row.fade_new[1] = int16_t(subsampled ? 32 : 27);
+        }
+        for (int x = 0; x < width; x++) flat.push_back(row.at(x));
+    }
+};
+
+av1::ScalingLookup random_scaling(std::mt19937& rng, int bd) {
+    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    int values[14], scalings[14];
+    const int count = u(1, 14);
+    int n = 0;
+    for (int v = u(0, 30); n < count && v < 256; v += u(1, 40), n++) values[n] = v, scalings[n] = u(0, 255);
+    return av1::ScalingLookup(values, scalings, n, bd);
+}
+
+template <typename Pixel>
+std::vector<Pixel> random_samples(std::mt19937& rng, int count, int bd, bool smooth) {
+    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    std::vector<Pixel> out(static_cast<std::size_t>(count), Pixel(0));
+    int level = u(0, (1 << bd) - 1);
+    for (auto& s : out) {
+        level = smooth ? std::clamp(level + u(-(4 << (bd - 8)), 4 << (bd - 8)), 0, (1 << bd) - 1) : u(0, (1 << bd) - 1);
+        s = Pixel(level);
+    }
+    return out;
+}
+
+void blend_luma(const uint8_t* s, uint8_t* d, const av1::simd::BlockNoiseRow& n, int w, const av1::ScalingLookup& sc,
+                int shift, int, const av1::ClipLimits& c) {
+    av1::simd::blend_luma_row_u8(s, d, n, w, sc, shift, c.min_value, c.max_luma);
+}
+void blend_luma(const uint16_t* s, uint16_t* d, const av1::simd::BlockNoiseRow& n, int w,
+                const av1::ScalingLookup& sc, int shift, int bd, const av1::ClipLimits& c) {
+    av1::simd::blend_luma_row_u16(s, d, n, w, sc, shift, bd, c.min_value, c.max_luma);
+}
+void blend_chroma(const uint8_t* s, uint8_t* d, const uint8_t* l, int lw, const av1::simd::BlockNoiseRow& n, int w,
+                  int subx, const av1::ChromaScalingIndex& i, const av1::ScalingLookup& sc, int shift, int bd,
+                  const av1::ClipLimits& c) {
+    av1::simd::blend_chroma_row_u8(s, d, l, lw, n, w, subx, i, sc, shift, bd, c.min_value, c.max_chroma);
+}
+void blend_chroma(const uint16_t* s, uint16_t* d, const uint16_t* l, int lw, const av1::simd::BlockNoiseRow& n,
+                  int w, int subx, const av1::ChromaScalingIndex& i, const av1::ScalingLookup& sc, int shift, int bd,
+                  const av1::ClipLimits& c) {
+    av1::simd::blend_chroma_row_u16(s, d, l, lw, n, w, subx, i, sc, shift, bd, c.min_value, c.max_chroma);
+}
+
+template <typename Pixel>
+void check_rows(std::mt19937& rng, int bd, int iterations) {
+    auto u = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    for (int iter = 0; iter < iterations; iter++) {
+        // full HD and 4K widths, and any other (every tail after the whole 64-sample steps)
+        const int pick = u(0, 3);
+        const int width = pick == 0 ? 1920 : pick == 1 ? 3840 : u(1, 2200);
+        const int subx = u(0, 1), mode = u(0, bd <= 10 ? 2 : 1);
+        const int luma_width = subx ? 2 * width - u(0, 1) : width;
+        const int chroma_width = subx ? (luma_width + 1) / 2 : width;
+        const av1::ScalingLookup scaling = random_scaling(rng, bd);
+        const int shift = u(8, 11);
+        const av1::ClipLimits clip = av1::clip_limits(u(0, 1), bd, u(0, 2));
+        const av1::ChromaScalingIndex index{u(0, 3) == 0, u(-128, 127), u(-128, 127), u(-256, 255)};
+        const TemplateNoise luma_noise(luma_width, 32, bd, u(1, 40), mode, rng);
+        // unsubsampled luma with 16-wide noise blocks: subsampled chroma above 8 bits, which the
+        // synthesis hands its shared co-sited luma rows
+        const int chroma_block = subx || u(0, 2) == 0 ? 16 : 32;
+        const TemplateNoise chroma_noise(chroma_width, chroma_block, bd, u(1, 40), mode, rng);
+        const bool smooth = u(0, 1);
+        const std::vector<Pixel> luma = random_samples<Pixel>(rng, luma_width, bd, smooth);
+        const std::vector<Pixel> chroma = random_samples<Pixel>(rng, chroma_width, bd, smooth);
+        std::vector<Pixel> want(static_cast<std::size_t>(luma_width), Pixel(0)), got = want;
+
+        av1::blend_luma_row<Pixel>(luma.data(), want.data(), luma_noise.flat.data(), luma_width, scaling, shift,
+                                   clip.min_value, clip.max_luma);
+        blend_luma(luma.data(), got.data(), luma_noise.row, luma_width, scaling, shift, bd, clip);
+        ASSERT_EQ(got, want) << "luma, iteration " << iter << " bd " << bd << " width " << luma_width << " mode "
+                             << mode;
+        std::vector<Pixel> in_place = luma;
+        blend_luma(in_place.data(), in_place.data(), luma_noise.row, luma_width, scaling, shift, bd, clip);
+        ASSERT_EQ(in_place, want) << "luma in place, iteration " << iter;
+
+        want.assign(std::size_t(chroma_width), 0);
+        got.assign(want.size(), 0);
+        av1::blend_chroma_row<Pixel>(chroma.data(), want.data(), luma.data(), luma_width, chroma_noise.flat.data(),
+                                     chroma_width, subx, index, scaling, shift, bd, clip.min_value, clip.max_chroma);
+        blend_chroma(chroma.data(), got.data(), luma.data(), luma_width, chroma_noise.row, chroma_width, subx, index,
+                     scaling, shift, bd, clip);
+        ASSERT_EQ(got, want) << "chroma, iteration " << iter << " bd " << bd << " width " << chroma_width
+                             << " luma width " << luma_width << " subx " << subx << " mode " << mode
+                             << " from luma " << index.from_luma;
+        in_place = chroma;
+        blend_chroma(in_place.data(), in_place.data(), luma.data(), luma_width, chroma_noise.row, chroma_width, subx,
+                     index, scaling, shift, bd, clip);
+        ASSERT_EQ(in_place, want) << "chroma in place, iteration " << iter;
+    }
+}
+
+TEST_P(SimdAv1BlendRowsEquivalence, EightBitRows) { check_rows<uint8_t>(rng, 8, 400); }
+
+TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRows) {
+    check_rows<uint16_t>(rng, 10, 100);
+    check_rows<uint16_t>(rng, 12, 60);
+}
+
+// The several-row kernels (blend_luma_rows_u8 / blend_chroma_rows_u8, as the synthesis calls
+// them for a stripe's rows): each row r at its stride, its noise r template rows further
+// down, its co-sited luma a luma stride further, against the references row by row.
+TEST_P(SimdAv1BlendRowsEquivalence, EightBitRowsOfAStripe) {
+    for (int iter = 0; iter < 60; iter++) {
+        const int width = uniform(0, 1) ? 1920 : uniform(1, 700), subx = uniform(0, 1), mode = uniform(0, 2);
+        const int luma_width = subx ? 2 * width - uniform(0, 1) : width;
+        const int chroma_width = subx ? (luma_width + 1) / 2 : width;
+        const int rows = uniform(1, 32);
+        const av1::ScalingLookup scaling = random_scaling(rng, 8);
+        const int shift = uniform(8, 11);
+        const av1::ClipLimits clip = av1::clip_limits(uniform(0, 1), 8, uniform(0, 2));
+        const av1::ChromaScalingIndex index{uniform(0, 3) == 0, uniform(-128, 127), uniform(-128, 127), uniform(-256, 255)};
+        // the first row anywhere in the first 40 template rows, the others below it
+        TemplateNoise luma_noise(luma_width, 32, 8, rows + 40, mode, rng);
+        TemplateNoise chroma_noise(chroma_width, 32 >> subx, 8, rows + 40, mode, rng);
+        luma_noise.row.row_offset = std::ptrdiff_t(uniform(0, 40)) * luma_noise.pitch;
+        chroma_noise.row.row_offset = std::ptrdiff_t(uniform(0, 40)) * chroma_noise.pitch;
+        const int luma_stride = luma_width + uniform(0, 40), chroma_stride = chroma_width + uniform(0, 40);
+        const std::vector<uint8_t> luma = random_samples<uint8_t>(rng, luma_stride * rows, 8, uniform(0, 1));
+        const std::vector<uint8_t> chroma = random_samples<uint8_t>(rng, chroma_stride * rows, 8, uniform(0, 1));
+        const int got_stride = luma_stride + uniform(0, 40);
+        std::vector<uint8_t> want(std::size_t(got_stride) * std::size_t(rows), uint8_t(7)), got = want;
+        // the luma rows co-sited with the chroma rows: every one, or every other (4:2:0)
+        const int luma_step = uniform(0, 1) + 1;
+        const int chroma_rows = (rows + luma_step - 1) / luma_step;
+        auto noise_of = [](const TemplateNoise& t, int r) {
+            av1::simd::BlockNoiseRow row = t.row;
+            row.row_offset += std::ptrdiff_t(r) * t.pitch;
+            std::vector<int16_t> flat;
+            for (int x = 0; x < int(t.flat.size()); x++) flat.push_back(row.at(x));
+            return flat;
+        };
+        for (int r = 0; r < rows; r++)
+            av1::blend_luma_row<uint8_t>(luma.data() + r * luma_stride, want.data() + r * got_stride,
+                                         noise_of(luma_noise, r).data(), luma_width, scaling, shift, clip.min_value,
+                                         clip.max_luma);
+        const av1::simd::PlaneRows luma_rows{rows, luma_stride, got_stride, 0, luma_noise.pitch};
+        av1::simd::blend_luma_rows_u8(luma.data(), got.data(), luma_rows, luma_noise.row, luma_width, scaling, shift,
+                                      clip.min_value, clip.max_luma);
+        ASSERT_EQ(got, want) << "luma rows, iteration " << iter << " width " << luma_width << " rows " << rows;
+        for (int r = 0; r < chroma_rows; r++)
+            av1::blend_chroma_row<uint8_t>(chroma.data() + r * chroma_stride, want.data() + r * got_stride,
+                                           luma.data() + r * luma_step * luma_stride, luma_width,
+                                           noise_of(chroma_noise, r).data(), chroma_width, subx, index, scaling, shift,
+                                           8, clip.min_value, clip.max_chroma);
+        const av1::simd::PlaneRows chroma_rows_of{chroma_rows, chroma_stride, got_stride, std::ptrdiff_t(luma_step) * luma_stride,
+                                                  chroma_noise.pitch};
+        av1::simd::blend_chroma_rows_u8(chroma.data(), got.data(), luma.data(), luma_width, chroma_rows_of,
+                                        chroma_noise.row, chroma_width, subx, index, scaling, shift, 8,
+                                        clip.min_value, clip.max_chroma);
+        ASSERT_EQ(got, want) << "chroma rows, iteration " << iter << " width " << chroma_width << " rows "
+                             << chroma_rows;
+    }
+}
+
+// The rows a stripe shares with the one above (assemble_cross_faded_row, up to 10 bits): both
+// rows' noise, each with its horizontal overlap faded or none, then the vertical fade of
+// build_stripe_noise, against the same from BlockNoiseRow::at.
+TEST_P(SimdAv1BlendRowsEquivalence, CrossFadedRows) {
+    for (int iter = 0; iter < 300; iter++) {
+        const int bd = uniform(0, 1) ? 10 : 8, subx = uniform(0, 1), suby = uniform(0, 1);
+        const int width = uniform(0, 2) ? uniform(1, 2200) : 1920 >> subx;
+        const int mode = uniform(0, 1) ? 2 : 0;  // faded in the kernel or no overlap (both rows alike)
+        const TemplateNoise above(width, 32 >> subx, bd, uniform(1, 40), mode, rng);
+        const TemplateNoise own(width, 32 >> subx, bd, uniform(1, 40), mode, rng);
+        const av1::OverlapWeights w = av1::overlap_weights(uniform(0, 1 - suby), suby);
+        const int gmin = own.row.gmin, gmax = own.row.gmax;
+        std::vector<int16_t> want(static_cast<std::size_t>(width), int16_t(0)), got(want.size() + 3, int16_t(0x7777));
+        for (int x = 0; x < width; x++) {
+            const int v = (above.flat[std::size_t(x)] * w.old_weight + own.flat[std::size_t(x)] * w.new_weight + 16) >> 5;
+            want[std::size_t(x)] = int16_t(std::clamp(v, gmin, gmax));
+        }
+        av1::simd::assemble_cross_faded_row(above.row, own.row, width, w.old_weight, w.new_weight, got.data());
+        for (int x = 0; x < width; x++)
+            ASSERT_EQ(got[std::size_t(x)], want[std::size_t(x)])
+                << "iteration " << iter << " x " << x << " width " << width << " bd " << bd << " mode " << mode;
+        for (std::size_t x = std::size_t(width); x < got.size(); x++) ASSERT_EQ(got[x], int16_t(0x7777)) << "wrote past the row";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, SimdAv1BlendRowsEquivalence, ::testing::ValuesIn(simd::available_targets()),
+                         [](const ::testing::TestParamInfo<simd::Target>& info) { return info.param.name; });
+
+}  // namespace
