@@ -139,12 +139,6 @@ Row run_frames(const std::string& method, const std::string& detail, const Frame
     return row;
 }
 
-std::string fmt(const char* f, double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
-
 }  // namespace
 
 void register_tradeoff(CLI::App& app) {
@@ -211,7 +205,7 @@ void register_tradeoff(CLI::App& app) {
             row.mpixels_per_s = double(vi.width) * vi.height * o->frames / seconds_since(t1) * 1e-6;
             row.method = "Gaussian approximation";
             row.detail = "kernel " + std::to_string(2 * g.kernel_radius() + 1) + "x" + std::to_string(2 * g.kernel_radius() + 1) +
-                         ", set-up " + fmt("%.2f", setup) + " s";
+                         ", set-up " + fixed_decimals(setup, 2) + " s";
             row.threads = o->threads;
             row.measured_on = std::to_string(vi.width) + "x" + std::to_string(vi.height);
             score(row, quantized_grain(out), target);
@@ -264,12 +258,12 @@ void register_tradeoff(CLI::App& app) {
             const double wall = seconds_since(t0), cpu = cpu_seconds() - c0;
             std::ostringstream s;
             s << "1024x1024, grey 128, r = 0.05, sigma = 0.8, N = 800, " << o->threads << " threads, "
-              << physical::algorithm_name(rep.algorithm) << ": **" << fmt("%.1f", wall) << " s wall**, "
-              << fmt("%.1f", cpu) << " s CPU (" << fmt("%.1f", cpu) << " core-seconds, against 26 s x 40 cores = 1040 "
-              << "core-seconds for the published CPU pixel-wise code: " << fmt("%.0f", 1040 / cpu) << "x less CPU per output). "
+              << physical::algorithm_name(rep.algorithm) << ": **" << fixed_decimals(wall, 1) << " s wall**, "
+              << fixed_decimals(cpu, 1) << " s CPU (" << fixed_decimals(cpu, 1) << " core-seconds, against 26 s x 40 cores = 1040 "
+              << "core-seconds for the published CPU pixel-wise code: " << fixed_decimals(1040 / cpu, 0) << "x less CPU per output). "
               << "1-minute load average on the 2 cores: " << load_before << " before this tradeoff run started, "
               << load_average() << " when the benchmark ended (this run's own threads included); CPU / threads = "
-              << fmt("%.1f", cpu / o->threads) << " s, so the wall time above is "
+              << fixed_decimals(cpu / o->threads, 1) << " s, so the wall time above is "
               << (wall < 1.15 * cpu / o->threads ? "that of cores the run had to itself"
                                                   : "longer than the CPU time explains: the cores were shared")
               << ".";
@@ -289,8 +283,8 @@ void register_tradeoff(CLI::App& app) {
            << "- **error**: relative L2 error of the measured autocovariance over lags |dx|, |dy| <= " << kMaxLag
            << " against the closed form, sqrt(sum (C_measured - C)^2 / sum C^2), on the 8-bit output.\n"
            << "- **variance ratio**: measured grain variance / closed-form variance (the closed form's standard deviation "
-           << "is " << fmt("%.2f", std::sqrt(target(0, 0)) * 255) << " code values).\n"
-           << "- **lag-1 correlation**: C(1,0)/C(0,0), measured; the target is " << fmt("%.3f", target(1, 0) / target(0, 0))
+           << "is " << fixed_decimals(std::sqrt(target(0, 0)) * 255, 2) << " code values).\n"
+           << "- **lag-1 correlation**: C(1,0)/C(0,0), measured; the target is " << fixed_decimals(target(1, 0) / target(0, 0), 3)
            << ".\n- **throughput**: output Mpixel/s of the luma plane (FGC and AV1 also process 4:2:0 chroma without grain), "
            << "wall clock on this machine (2 cores; 1-minute load average " << load_before
            << " before this run started, " << load_average() << " when the table was written, this run included) "
@@ -300,8 +294,8 @@ void register_tradeoff(CLI::App& app) {
         std::vector<PlotPoint> pts;
         for (const Row& r : rows) {
             md << "| " << r.method << " | " << r.detail << " | " << r.threads << " | " << r.measured_on << " | "
-               << fmt("%.3f", r.mpixels_per_s) << " | " << fmt("%.4f", r.error) << " | " << fmt("%.3f", r.variance_ratio)
-               << " | " << fmt("%.3f", r.lag1) << " |\n";
+               << fixed_decimals(r.mpixels_per_s, 3) << " | " << fixed_decimals(r.error, 4) << " | " << fixed_decimals(r.variance_ratio, 3)
+               << " | " << fixed_decimals(r.lag1, 3) << " |\n";
             pts.push_back({r.method, r.mpixels_per_s, r.error});
         }
         md << "\nThe Boolean model's error at finite N is mostly the Monte Carlo variance u(1-u)/N added at lag 0 (its "

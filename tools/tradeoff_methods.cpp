@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "filmgrain/session.hpp"
@@ -107,6 +108,12 @@ FrameSynthesizer av1_synthesizer(const Av1FilmGrainParams& params) {
         s->receive_av1_params(p, 0, 1);
         s->apply(const_cast<FrameBuffer&>(src).view(), dst.view());
     };
+}
+
+std::string fixed_decimals(double v, int decimals) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.*f", decimals, v);
+    return b;
 }
 
 }  // namespace filmgrain::cli

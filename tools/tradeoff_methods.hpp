@@ -25,4 +25,7 @@ using FrameSynthesizer = std::function<void(const FrameBuffer& src, FrameBuffer&
 FrameSynthesizer fgc_synthesizer(const FgcParams& p, FgcFlavour flavour);
 FrameSynthesizer av1_synthesizer(const Av1FilmGrainParams& p);
 
+// v with `decimals` digits after the point, as the report's tables print numbers.
+std::string fixed_decimals(double v, int decimals);
+
 }  // namespace filmgrain::cli

@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <random>
 #include <sstream>
 
 #include "physical/boolean_covariance.hpp"
 #include "physical/monte_carlo_offsets.hpp"
+#include "tradeoff_methods.hpp"
 
 namespace filmgrain::cli {
 
@@ -15,20 +14,6 @@ namespace {
 
 constexpr int kFrames = 4;
 constexpr int kMaxLag = 3;
-
-std::string fmt(const char* f, double v) {
-    char b[64];
-    std::snprintf(b, sizeof b, f, v);
-    return b;
-}
-
-std::vector<double> independent_offsets(const physical::BooleanModelParams& p, int n, uint64_t seed) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g(0.0, p.filter_sigma / p.zoom);
-    std::vector<double> xi(2 * std::size_t(n));
-    for (double& v : xi) v = g(rng);
-    return xi;
-}
 
 struct OffsetFigures {
     double worst_h_minus_v = 0;  // max over lags 1..3 of |C(l,0) - C(0,l)|, relative to the limit's variance
@@ -92,13 +77,13 @@ std::string boolean_offsets_section(const physical::BooleanModelParams& p, doubl
         std::vector<std::vector<double>> ours, iid;
         for (int s = 1; s <= kFrames; s++) {
             ours.push_back(physical::monte_carlo_offsets(p, uint64_t(s), n));
-            iid.push_back(independent_offsets(p, n, 1000 + uint64_t(s)));
+            iid.push_back(physical::independent_gaussian_offsets(p, 1000 + uint64_t(s), n));
         }
         const OffsetFigures a = figures(cov, ours), b = figures(cov, iid);
         const double expected = 1 + (cov.coverage(0) - cov.filtered(0)) / (n * cov.filtered(0));
-        md << "| " << n << " | " << fmt("%.4f", a.worst_h_minus_v) << " | " << fmt("%.4f", b.worst_h_minus_v) << " | "
-           << fmt("%.4f", a.var_lo) << "..." << fmt("%.4f", a.var_hi) << " | " << fmt("%.4f", b.var_lo) << "..."
-           << fmt("%.4f", b.var_hi) << " | " << fmt("%.4f", expected) << " |\n";
+        md << "| " << n << " | " << fixed_decimals(a.worst_h_minus_v, 4) << " | " << fixed_decimals(b.worst_h_minus_v, 4) << " | "
+           << fixed_decimals(a.var_lo, 4) << "..." << fixed_decimals(a.var_hi, 4) << " | " << fixed_decimals(b.var_lo, 4) << "..."
+           << fixed_decimals(b.var_hi, 4) << " | " << fixed_decimals(expected, 4) << " |\n";
     }
     // The same on rendered output, as a user would measure it (with the spatial sampling error
     // of one picture on top).
@@ -107,7 +92,7 @@ std::string boolean_offsets_section(const physical::BooleanModelParams& p, doubl
     const FloatPlane u(content_side, content_side, float(grey));
     md << "\nMeasured on rendered output (" << content_side << "x" << content_side << ", N = 800), correlation "
        << "H / V at lags 1.." << kMaxLag << "; closed form (N -> infinity):";
-    for (int l = 1; l <= kMaxLag; l++) md << " " << fmt("%.3f", cov.filtered_output_lag(l, 0) / cov.filtered(0));
+    for (int l = 1; l <= kMaxLag; l++) md << " " << fixed_decimals(cov.filtered_output_lag(l, 0) / cov.filtered(0), 3);
     md << "\n\n| plane seed | lag 1 H / V | lag 2 H / V | lag 3 H / V |\n|---|---|---|---|\n";
     for (int s = 0; s < 2; s++) {
         FloatPlane out;
@@ -116,7 +101,7 @@ std::string boolean_offsets_section(const physical::BooleanModelParams& p, doubl
         for (int l = 1; l <= kMaxLag; l++) {
             double h, v;
             measured_correlations(out, l, h, v);
-            md << " | " << fmt("%.3f", h) << " / " << fmt("%.3f", v);
+            md << " | " << fixed_decimals(h, 3) << " / " << fixed_decimals(v, 3);
         }
         md << " |\n";
     }

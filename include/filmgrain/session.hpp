@@ -35,8 +35,8 @@ struct SessionOptions {
     bool passthrough_invalid = false;
     // Stripe workers per session, including the calling thread: 0..256, 0 = every hardware
     // thread. rdd5/vtm/tr and AV1/AFGS1 split each picture into stripes; the output is the
-    // same for every count. vfgs runs on the calling thread (its reference's random state
-    // runs through the picture in order).
+    // same for every count. So does vfgs: its reference's random state runs through the
+    // picture in order, and each stripe starts from that state jumped ahead at set-up.
     int threads = 0;
     // vtm: the SPS coded luma size (HM's block size choice); 0 = picture size rounded up to 16.
     int coded_width = 0;

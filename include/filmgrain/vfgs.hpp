@@ -35,6 +35,10 @@ struct Options {
     // and the vertical overlap blends rows 16k and 16k+1 (4:2:0 chroma 8k). 8 or 32 would
     // change all three and is not a VFGS any more: it throws Error(kUnsupported).
     int block_size = 0;
+    // Stripe workers including the calling thread: 0..256, 0 = every hardware thread. Each
+    // stripe starts from its own LFSR state, jumped ahead at set-up from the reference's one
+    // sequence through the picture, so the output is the same for every count.
+    int threads = 1;
 };
 
 class Synthesizer {

@@ -29,6 +29,14 @@ std::vector<double> shifted_r2_points(uint64_t plane_seed, int count) {
     return pts;
 }
 
+std::vector<double> independent_gaussian_offsets(const BooleanModelParams& p, uint64_t seed, int count) {
+    CellRandom rng(hash_coordinates(-2, -2, seed));
+    const double s = p.filter_sigma / p.zoom;
+    std::vector<double> xi(2 * std::size_t(count));
+    for (double& v : xi) v = s * rng.normal();
+    return xi;
+}
+
 std::vector<double> monte_carlo_offsets(const BooleanModelParams& p, uint64_t plane_seed, int count) {
     std::vector<double> xi = shifted_r2_points(plane_seed, count);
     const double s = p.filter_sigma / p.zoom;

@@ -25,6 +25,10 @@ struct BooleanModelParams;
 // x, y pairs in input-pixel units; the first k are the same for every count >= k.
 std::vector<double> monte_carlo_offsets(const BooleanModelParams& p, uint64_t plane_seed, int count);
 
+// Independent N(0, s^2 I) draws from a seeded generator: what the offsets were before the
+// low-discrepancy set, and the Monte Carlo error the set is judged against (tests, tradeoff).
+std::vector<double> independent_gaussian_offsets(const BooleanModelParams& p, uint64_t seed, int count);
+
 // The unit-square points behind the offsets (for the tests: they must be uniform).
 std::vector<double> shifted_r2_points(uint64_t plane_seed, int count);
 

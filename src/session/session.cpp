@@ -122,6 +122,7 @@ struct Session::Impl {
             vo.output_bit_depth = options.vfgs_output_bit_depth;
             vo.pattern_interpolation = options.pattern_interpolation;
             vo.block_size = options.block_size;
+            vo.threads = options.threads;
             vfgs = std::make_unique<vfgs::Synthesizer>(vo);
         } else {
             FgcOptions fo;

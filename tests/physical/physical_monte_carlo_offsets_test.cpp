@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include "physical/boolean_covariance.hpp"
 #include "physical/boolean_model.hpp"
@@ -16,14 +15,6 @@
 using namespace filmgrain::physical;
 
 namespace {
-
-std::vector<double> independent_offsets(const BooleanModelParams& p, int n, unsigned seed) {
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g(0.0, p.filter_sigma / p.zoom);
-    std::vector<double> xi(2 * std::size_t(n));
-    for (double& v : xi) v = g(rng);
-    return xi;
-}
 
 struct Anisotropy {
     double worst_h_minus_v = 0;  // largest |C(l,0) - C(0,l)| over lags 1..3
@@ -105,7 +96,7 @@ TEST_P(RealizedCovariance, IsotropicAndNearTheLimit) {
     double iid_aniso = 0, iid_var_err = 0;
     const int draws = 6;
     for (int d = 0; d < draws; d++) {
-        const auto xi = independent_offsets(p, c.n, 1000 + d);
+        const auto xi = independent_gaussian_offsets(p, 1000 + uint64_t(d), c.n);
         iid_aniso += anisotropy(cov, xi).worst_h_minus_v / draws;
         iid_var_err += std::abs(cov.given_offsets(0, 0, xi) - cov.filtered(0)) / draws;
     }

@@ -165,6 +165,27 @@ TEST(Session, VfgsOptionsGiveWhatItsSynthesizerGives) {
     }
 }
 
+TEST(Session, VfgsThreadsGiveTheSameOutput) {
+    // 200 rows: 13 stripes, the last one partial, shared unevenly among the workers.
+    const FrameBuffer in = noise_picture(176, 200, PixelFormat{ChromaFormat::k420, 8}, 3);
+    SessionOptions so;
+    so.flavour = FgcFlavour::kVfgs;
+    so.threads = 1;
+    const std::vector<uint8_t> one = through_session(so, in);
+    for (int t : {2, 3, 7}) {
+        so.threads = t;
+        EXPECT_EQ(through_session(so, in), one) << t << " threads";
+    }
+    vfgs::Options bad;
+    bad.threads = -1;
+    try {
+        vfgs::Synthesizer v(bad);
+        FAIL() << "threads = -1 accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("threads = -1"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Session, ClipOverrideAndPictureMatrixReachAv1Synthesis) {
     const FrameBuffer in = noise_picture(96, 64, PixelFormat{ChromaFormat::k420, 10}, 9);
     for (int clip : {0, 1})

@@ -48,6 +48,14 @@ FG_AVX512_VBMI inline void Scales1024(const Lut1024& lut, __m512i index_low, __m
 // Twin of blend_luma_row at 10 bits; `rest(x, seams)` blends samples [x, width) the generic
 // way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
 // byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
+// 32 samples of the output: src + Round2(scale * noise, shift), the rounding high multiply of
+// the q15 scale, clipped to [vmin, vmax].
+FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scale, __m512i noise, __m512i vmin,
+                                        __m512i vmax) {
+    const __m512i v = _mm512_add_epi16(src, _mm512_mulhrs_epi16(scale, noise));
+    _mm512_storeu_si512(dst, _mm512_min_epi16(_mm512_max_epi16(v, vmin), vmax));
+}
+
 template <Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
                               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
@@ -70,11 +78,8 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
             const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
             __m512i scale_low, scale_high;
             Scales1024(lut, s_low, s_high, up_shift, scale_low, scale_high);
-            // Round2(scale * noise, shift) as a rounding high multiply of the q15 scale
-            const __m512i v_low = _mm512_add_epi16(s_low, _mm512_mulhrs_epi16(scale_low, noise_low));
-            const __m512i v_high = _mm512_add_epi16(s_high, _mm512_mulhrs_epi16(scale_high, noise_high));
-            _mm512_storeu_si512(dst + x, _mm512_min_epi16(_mm512_max_epi16(v_low, vmin), vmax));
-            _mm512_storeu_si512(dst + x + 32, _mm512_min_epi16(_mm512_max_epi16(v_high, vmin), vmax));
+            StoreBlended(dst + x, s_low, scale_low, noise_low, vmin, vmax);
+            StoreBlended(dst + x + 32, s_high, scale_high, noise_high, vmin, vmax);
         },
         rest);
 }
@@ -125,10 +130,8 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
             }
             __m512i scale_low, scale_high;
             Scales1024(lut, i_low, i_high, up_shift, scale_low, scale_high);
-            const __m512i v_low = _mm512_add_epi16(s_low, _mm512_mulhrs_epi16(scale_low, noise_low));
-            const __m512i v_high = _mm512_add_epi16(s_high, _mm512_mulhrs_epi16(scale_high, noise_high));
-            _mm512_storeu_si512(dst + x, _mm512_min_epi16(_mm512_max_epi16(v_low, vmin), vmax));
-            _mm512_storeu_si512(dst + x + 32, _mm512_min_epi16(_mm512_max_epi16(v_high, vmin), vmax));
+            StoreBlended(dst + x, s_low, scale_low, noise_low, vmin, vmax);
+            StoreBlended(dst + x + 32, s_high, scale_high, noise_high, vmin, vmax);
         },
         rest);
 }

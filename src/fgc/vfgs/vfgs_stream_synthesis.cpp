@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/plane_layout.hpp"
+#include "core/thread_pool.hpp"
 #include "fgc/vfgs/vfgs_frame_setup.hpp"
 #include "fgc/vfgs/vfgs_frame_synthesis.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
@@ -25,9 +26,9 @@ struct Synthesizer::Impl {
     int prepared_bit_depth = 0;
     TemplateBank bank;  // persists across parameter sets, as VFGS's template memory
     SynthesisSetup setup;
-    // One stripe worker: the public Options have no thread count yet (the stripes can run on
-    // any number of threads with the same output, see FrameSynthesis).
-    FrameSynthesis frames{1, Kernels::kOptimized};
+    FrameSynthesis frames;
+
+    explicit Impl(int threads) : frames(threads, Kernels::kOptimized) {}
 
     void prepare(ChromaFormat format, int bit_depth) {
         setup = prepare_setup(*params, format, bit_depth, options, bank);
@@ -37,7 +38,13 @@ struct Synthesizer::Impl {
     }
 };
 
-Synthesizer::Synthesizer(const Options& options) : impl_(std::make_unique<Impl>()) {
+namespace {
+// Before the stripe workers exist: a bad thread count must not reach the pool.
+const Options& checked(const Options& options) {
+    if (options.threads < 0 || options.threads > kMaxThreads)
+        throw Error(ErrorCode::kInvalidArgument, "vfgs: threads = " + std::to_string(options.threads) +
+                                                     " (allowed 0 = every hardware thread, 1.." +
+                                                     std::to_string(kMaxThreads) + ")");
     if (options.gain_percent < 0)
         throw Error(ErrorCode::kInvalidArgument,
                     "vfgs: gain = " + std::to_string(options.gain_percent) + " percent is negative (allowed 0 and above)");
@@ -50,6 +57,11 @@ Synthesizer::Synthesizer(const Options& options) : impl_(std::make_unique<Impl>(
                     "vfgs: block size " + std::to_string(options.block_size) +
                         " is not supported (allowed 0 or 16: VFGS randomizes 16x16 blocks, its LFSR bit fields give "
                         "offsets for 16-sample blocks in 64x64 templates, and its overlap and stripes are 16 rows)");
+    return options;
+}
+}  // namespace
+
+Synthesizer::Synthesizer(const Options& options) : impl_(std::make_unique<Impl>(checked(options).threads)) {
     impl_->options = options;
     const uint32_t r0 = options.seed ? lfsr_state_from_seed(*options.seed) : kDefaultLfsrState;
     impl_->cursor = LfsrCursor{r0, r0};
