@@ -63,7 +63,8 @@ void BM_Fgc(benchmark::State& state) {
 }
 
 // args: width, height, bit depth, threads, optimized (0/1). The vfgs flavour (VFGS-exact)
-// through its frame synthesis, which takes a thread count (vfgs::Options has none yet).
+// through its frame synthesis directly (the session's vfgs::Options::threads reaches the same
+// constructor argument), so that the stream set-up is not timed.
 // VFGS's scale is 8 bits at every bit depth, so the 8-bit parameter set serves both.
 void BM_Vfgs(benchmark::State& state) {
     const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
