@@ -11,6 +11,7 @@
 #include "cli_common.hpp"
 #include "core/simd_targets.hpp"
 #include "filmgrain/error.hpp"
+#include "filmgrain/filmgrain.h"
 
 namespace filmgrain::cli {
 namespace {
@@ -20,6 +21,15 @@ std::unique_ptr<CLI::App> make_app(bool* ran_default) {
         "filmgrain: film grain synthesis bit-exact with the FGC SEI (RDD 5, HM/VTM) and AV1 references.\n"
         "Without a subcommand it runs the demo: grain on a built-in clip, output and PNG preview in ./out/");
     app->require_subcommand(0, 1);
+    // The vector target is part of the version: benchmark reports and bug reports need to say
+    // which optimized kernels ran (FILMGRAIN_SIMD_TARGET may have forced one).
+    app->set_version_flag("--version", [] {
+        std::string available;
+        for (const auto& t : simd::available_targets()) available += (available.empty() ? "" : " ") + t.name;
+        return "filmgrain " + std::to_string(FG_VERSION_MAJOR) + "." + std::to_string(FG_VERSION_MINOR) + "." +
+               std::to_string(FG_VERSION_PATCH) + "\nvector target: " + simd::dispatched_target() +
+               " (available: " + available + ")";
+    });
     register_apply(*app);
     register_render(*app);
     register_stats(*app);
