@@ -3,14 +3,20 @@
 // front of the POC fields, pictures whose header sits in a PH NAL unit or in the slice,
 // lsb wrap-around, an end of sequence followed by a CRA with a dropped RASL picture, and
 // ph_poc_msb_cycle_val. Every picture carries its own FGC SEI, so each unit's payload is
-// checked to stay with its picture.
+// checked to stay with its picture. The same streams carry AFGS1 (T.35 SEI, prefix and
+// suffix) for issue 19's "AFGS1 inside H.266": stored sets in decode order, each picture
+// taking its own unit's payload in output order, through `params extract` and `apply`.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
+#include "bitstream/av1_grain_extraction.hpp"
 #include "bitstream/h266_poc.hpp"
 #include "bitstream/metadata_insertion.hpp"
 #include "bitstream/nal_units.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "metadata/bit_reader.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
 #include "stream_fixtures.hpp"
 
@@ -127,16 +133,21 @@ struct Pic {
 
 constexpr int kTrail = 0, kRasl = 3, kIdr = 7, kCra = 9, kPhNut = 19, kEos = 21;
 
-std::vector<uint8_t> build(const std::vector<Pic>& pics, bool msb_cycle_sps, std::size_t eos_before) {
+AccessUnitSei fgc_sei_for(int i) {
+    return {{SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(test_support::fgc_params_for(i), FgcCodec::kVvc)}}, {}};
+}
+
+std::vector<uint8_t> build(const std::vector<Pic>& pics, bool msb_cycle_sps, std::size_t eos_before,
+                           const std::function<AccessUnitSei(int)>& sei_for = fgc_sei_for) {
     std::vector<uint8_t> s;
     append_nal(s, 15, 0, sps(msb_cycle_sps));
     append_nal(s, 16, 0, pps());
     for (std::size_t i = 0; i < pics.size(); i++) {
         const Pic& p = pics[i];
         if (i == eos_before) append_nal(s, kEos, 0, BitWriter{});
-        const auto sei = sei_nal_unit(StreamCodec::kH266, false,
-                                      {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(test_support::fgc_params_for(int(i)),
-                                                                                        FgcCodec::kVvc)}});
+        const AccessUnitSei messages = sei_for(int(i));
+        std::vector<uint8_t> sei;
+        if (!messages.prefix.empty()) sei = sei_nal_unit(StreamCodec::kH266, false, messages.prefix);
         const bool irap = p.type == kIdr || p.type == kCra;
         if (p.ph_unit) {
             BitWriter ph;
@@ -153,6 +164,10 @@ std::vector<uint8_t> build(const std::vector<Pic>& pics, bool msb_cycle_sps, std
             if (header_here) picture_header(sl, irap, p.lsb, msb_cycle_sps, p.msb_cycle);
             sl.ue(3);
             append_nal(s, p.type, p.tid, sl);
+        }
+        if (!messages.suffix.empty()) {
+            const auto suffix = sei_nal_unit(StreamCodec::kH266, true, messages.suffix);
+            s.insert(s.end(), suffix.begin(), suffix.end());
         }
     }
     return s;
@@ -222,4 +237,147 @@ TEST(H266Poc, SliceWithoutAnyPictureHeaderIsAWarningNotACrash) {
     ASSERT_EQ(scan.units.size(), 1u);
     EXPECT_FALSE(scan.units[0].warnings.empty());
     EXPECT_FALSE(scan.units[0].poc.has_value());
+}
+
+namespace {
+
+constexpr int kAfgs1Width = 96, kAfgs1Height = 64;
+
+Afgs1ParamSet afgs1_set(int idx, const Av1FilmGrainParams& params, int width, int height) {
+    Afgs1ParamSet set;
+    set.film_grain_param_set_idx = idx;
+    set.params = params;
+    set.target.apply_horz_resolution = width;
+    set.target.apply_vert_resolution = height;
+    set.target.video_signal_characteristics_flag = 1;  // 8-bit 4:2:0
+    return set;
+}
+
+// Decode-order unit i: even units a prefix SEI, odd ones a suffix SEI after their slices;
+// unit 4 no payload; unit 6 update_grain_flag = 0 with a new seed (the set unit 5 stored);
+// units 0 and 8 a second set for another picture size, which must be ignored.
+std::vector<std::vector<uint8_t>> afgs1_payloads(std::size_t units) {
+    std::vector<std::vector<uint8_t>> out;
+    for (int i = 0; i < int(units); i++) {
+        Afgs1Payload pl;
+        if (i == 6) {
+            Av1FilmGrainParams reseed = test_support::av1_params_for(5);
+            reseed.update_grain = 0;
+            reseed.grain_seed = 4321;
+            pl.sets = {afgs1_set(0, reseed, kAfgs1Width, kAfgs1Height)};
+        } else if (i != 4) {
+            pl.sets = {afgs1_set(0, test_support::av1_params_for(i), kAfgs1Width, kAfgs1Height)};
+            if (i % 8 == 0)
+                pl.sets.insert(pl.sets.begin(),
+                               afgs1_set(1, test_support::av1_params_for(i / 2 + 10), kAfgs1Width / 2, kAfgs1Height / 2));
+        }
+        out.push_back(pl.sets.empty() ? std::vector<uint8_t>{} : write_afgs1(pl));
+    }
+    return out;
+}
+
+Av1FilmGrainParams afgs1_expected(int unit) {
+    Av1FilmGrainParams want = test_support::av1_params_for(unit == 6 ? 5 : unit);
+    if (unit == 6) want.grain_seed = 4321;
+    return want;
+}
+
+const std::vector<Pic> kReorderedPictures = {
+    {kIdr, 0, 0, true, 0, true, true},  {kTrail, 0, 8, true, 8},   {kTrail, 1, 4, false, 4},
+    {kTrail, 2, 2, false, 2},           {kTrail, 2, 6, true, 6},   {kTrail, 0, 0, false, 16},
+    {kTrail, 1, 12, true, 12},          {kTrail, 0, 8, false, 24}, {kTrail, 0, 15, true, 31},
+    {kTrail, 0, 6, false, 38},          {kCra, 0, 5, true, 5, true, true},
+    {kRasl, 0, 3, false, 3, false},     {kTrail, 0, 9, false, 9},
+};
+
+std::vector<uint8_t> afgs1_stream(const std::vector<std::vector<uint8_t>>& payloads) {
+    return build(kReorderedPictures, false, 10, [&](int i) {
+        AccessUnitSei sei;
+        if (payloads[std::size_t(i)].empty()) return sei;
+        std::vector<SeiMessage>& where = i % 2 ? sei.suffix : sei.prefix;
+        where.push_back(SeiMessage{kSeiPayloadT35, payloads[std::size_t(i)]});
+        return sei;
+    });
+}
+
+}  // namespace
+
+TEST(H266Afgs1, EachOutputPictureTakesItsOwnUnitsPayloadWithStoredSetsInDecodeOrder) {
+    const auto payloads = afgs1_payloads(kReorderedPictures.size());
+    const auto stream = afgs1_stream(payloads);
+    const StreamScan scan = scan_stream(stream.data(), stream.size(), StreamCodec::kH266);
+    ASSERT_TRUE(scan.warnings.empty());
+    ASSERT_EQ(scan.units.size(), kReorderedPictures.size());
+    for (std::size_t i = 0; i < scan.units.size(); i++) {
+        SCOPED_TRACE("unit " + std::to_string(i));
+        ASSERT_EQ(scan.units[i].t35.size(), payloads[i].empty() ? 0u : 1u);
+        if (payloads[i].empty()) continue;
+        EXPECT_EQ(scan.units[i].t35[0].suffix, i % 2 == 1);
+        EXPECT_TRUE(is_afgs1_t35(scan.units[i].t35[0].t35));
+    }
+    std::vector<std::string> warnings;
+    const auto per_picture = afgs1_payloads_in_output_order(scan, warnings);
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings[0]);
+    // POC order within each sequence; the RASL picture after the CRA is not output
+    const std::vector<int> units_in_output = {0, 3, 2, 4, 1, 6, 5, 7, 8, 9, 10, 12};
+    ASSERT_EQ(per_picture.size(), units_in_output.size());
+    for (std::size_t k = 0; k < per_picture.size(); k++) {
+        const int unit = units_in_output[k];
+        SCOPED_TRACE("output picture " + std::to_string(k) + " (unit " + std::to_string(unit) + ")");
+        ASSERT_EQ(per_picture[k].has_value(), unit != 4);
+        if (unit == 4) continue;
+        Afgs1Picture picture;
+        picture.width = kAfgs1Width;
+        picture.height = kAfgs1Height;
+        const std::optional<Afgs1Selection> set = select_afgs1_set(*per_picture[k], picture);
+        ASSERT_TRUE(set.has_value());
+        Av1FilmGrainParams got = set->params;
+        got.update_grain = afgs1_expected(unit).update_grain;
+        EXPECT_EQ(got, afgs1_expected(unit));
+    }
+}
+
+TEST(H266Afgs1, ParamsExtractThenApplyEqualsApplyWithThePayloadsInOutputOrder) {
+    namespace fs = std::filesystem;
+    const fs::path dir = test_support::fresh_test_dir("afgs1-h266");
+    const auto payloads = afgs1_payloads(kReorderedPictures.size());
+    const auto stream = afgs1_stream(payloads);
+    test_support::write_bytes(dir / "s.266", stream);
+    const std::vector<int> units_in_output = {0, 3, 2, 4, 1, 6, 5, 7, 8, 9, 10, 12};
+    // `apply --afgs1` reads the files in output order, so unit 6's update_grain_flag = 0 would
+    // meet another stored set there (unit 1's, output before it): its file carries the set it
+    // resolves to in decode order instead (unit 5's with the new seed).
+    for (std::size_t k = 0; k < units_in_output.size(); k++) {
+        const int unit = units_in_output[k];
+        if (payloads[std::size_t(unit)].empty()) continue;
+        Afgs1Payload resolved;
+        resolved.sets = {afgs1_set(0, afgs1_expected(6), kAfgs1Width, kAfgs1Height)};
+        test_support::write_bytes(dir / ("afgs1_" + std::to_string(k) + ".bin"),
+                                  unit == 6 ? write_afgs1(resolved) : payloads[std::size_t(unit)]);
+    }
+    // the clean pictures: no H.266 decoder is packaged, so a synthetic clip stands in for them
+    std::vector<uint8_t> clean(units_in_output.size() * kAfgs1Width * kAfgs1Height * 3 / 2);
+    for (std::size_t i = 0; i < clean.size(); i++) clean[i] = uint8_t(16 + (i * 7 + i / 97) % 200);
+    test_support::write_bytes(dir / "clean.yuv", clean);
+    using test_support::q;
+    using test_support::tool;
+    const std::string picture = " --size " + std::to_string(kAfgs1Width) + "x" + std::to_string(kAfgs1Height) +
+                                " --pix-fmt yuv420p ";
+    ASSERT_TRUE(test_support::run_or_fail(tool() + " params extract -q" + picture + q(dir / "s.266") + " -o " +
+                                          q(dir / "p.json")));
+    ASSERT_TRUE(test_support::run_or_fail(tool() + " apply -q" + picture + "-i " + q(dir / "clean.yuv") + " -p " +
+                                          q(dir / "p.json") + " -o " + q(dir / "extracted.yuv")));
+    ASSERT_TRUE(test_support::run_or_fail(tool() + " apply -q" + picture + "-i " + q(dir / "clean.yuv") + " --afgs1 " +
+                                          q(dir / "afgs1_%d.bin") + " -o " + q(dir / "applied.yuv")));
+    const auto extracted = test_support::read_bytes(dir / "extracted.yuv");
+    ASSERT_EQ(extracted.size(), clean.size());
+    EXPECT_TRUE(extracted == test_support::read_bytes(dir / "applied.yuv"));
+    // output picture 3 is unit 4's, which carries no payload: no grain; every other one has grain
+    const std::size_t fb = std::size_t(kAfgs1Width) * kAfgs1Height * 3 / 2;
+    for (std::size_t k = 0; k < units_in_output.size(); k++)
+        EXPECT_EQ(std::equal(extracted.begin() + long(fb * k), extracted.begin() + long(fb * (k + 1)),
+                             clean.begin() + long(fb * k)),
+                  k == 3)
+            << "picture " << k;
+    if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
