@@ -193,7 +193,7 @@ int ApplyJob::run_range(int from, int to, const std::string& part) {
     // synthesizing them (Session::skip_picture).
     for (int k = 0; k < from; k++) {
         const FrameInfo fi = feed.feed(session, k, info.fps_num, info.fps_den);
-        session.skip_picture(&fi);
+        session.skip_picture(info.width, info.height, &fi);
     }
     if (!reader.skip_frames(from)) return 0;
     VideoInfo out_info = info;

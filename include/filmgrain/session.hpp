@@ -133,9 +133,11 @@ public:
     // Follows the stream over one picture without synthesizing it: the metadata state moves
     // on exactly as apply() would move it (pending SEIs, persistence and cancel, AFGS1
     // payloads, the picture count), so that work on a range of a stream can start mid-way
-    // from the metadata alone. vfgs throws Error(kUnsupported): its reference's random
-    // state runs through the samples of every picture.
+    // from the metadata alone. vfgs needs the picture's luma size (its random state steps
+    // once per 16x16 block, and a skip jumps it as far): the first form throws
+    // Error(kUnsupported) for it.
     void skip_picture(const FrameInfo* info = nullptr);
+    void skip_picture(int luma_width, int luma_height, const FrameInfo* info = nullptr);
 
     const SessionOptions& options() const;
 

@@ -62,6 +62,12 @@ public:
     // and src's bit depth or Options::output_bit_depth; it may alias src when
     // the bit depths match. Throws when no parameters were set.
     void apply(const FrameView& src, const FrameView& dst);
+    // Follows one frame of this luma size without synthesizing it: the random state moves on
+    // exactly as apply() would move it (one LFSR step per 16x16 block, jumped; not at all
+    // under a cancel), so that work on a range of a stream can start mid-way. Throws as
+    // apply() does for a size VFGS refuses (kUnsupported), and kInvalidArgument when no
+    // parameters were set; the chroma format and bit depth are apply()'s to check.
+    void skip(int luma_width, int luma_height);
     // A picture without grain (no parameter set yet, or an invalid one passed through):
     // src copied to dst, rounded to Options::output_bit_depth as the reference outputs it.
     void pass_through(const FrameView& src, const FrameView& dst) const;

@@ -137,7 +137,7 @@ public:
         return planes_list(dst);
     }
 
-    void skip_picture(std::optional<int> poc, int idr_pic_id) {
+    void skip_picture(std::optional<int> poc, int idr_pic_id, int width, int height) {
         bool given = false;
         FrameInfo fi = info_for(poc, idr_pic_id, std::nullopt, std::nullopt, &given);
         std::lock_guard<std::mutex> lock(mutex_);
@@ -147,7 +147,7 @@ public:
             fi = fed;
             given = true;
         }
-        session_.skip_picture(given ? &fi : nullptr);
+        session_.skip_picture(width, height, given ? &fi : nullptr);
         fed_pictures_++;
     }
 
@@ -258,7 +258,10 @@ poc / idr_pic_id: the picture's ids (default: pictures counted from 0); seed: th
 seed instead (FGC pic_offset, AV1 grain_seed); inplace: write into the given arrays.
 The GIL is released while the grain is synthesized.)doc")
         .def("skip_picture", &PySession::skip_picture, py::kw_only(), "poc"_a = py::none(), "idr_pic_id"_a = 0,
-             "Follows the stream over one picture without synthesizing it (state moves on as apply() moves it).")
+             "width"_a = 0, "height"_a = 0,
+             "Follows the stream over one picture without synthesizing it (state moves on as apply() moves it).\n"
+             "width / height: the picture's luma size, which the vfgs flavour needs (its random state steps once\n"
+             "per 16x16 block); the other models ignore it.")
         .def("reset", &PySession::reset, "Forgets the stream (a seek or a new stream).")
         .def_property_readonly("last_result", &PySession::last_result,
                                "The last apply(): grain_applied, message (why no grain), parameters_refused.");

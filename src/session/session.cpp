@@ -169,22 +169,8 @@ struct Session::Impl {
             r.parameters_refused = fr.parameters_refused;
             return r;
         }
-        if (info.seed)
-            throw Error(ErrorCode::kUnsupported,
-                        "seed: the vfgs flavour never reseeds per picture (VersatileFilmGrain); set vfgs_seed at creation");
-        if (sei) {
-            // vfgs keeps the last parameter set in force (the reference has no persistence
-            // rules); a cancel or an invalid set stays in force until the next SEI.
-            vfgs_has_params = true;
-            vfgs_cancelled = sei->params.film_grain_characteristics_cancel_flag;
-            vfgs_invalid.clear();
-            try {
-                vfgs->set_params(sei->params);
-            } catch (const Error& e) {
-                if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
-                vfgs_invalid = e.what();
-            }
-        }
+        if (info.seed) refuse_vfgs_seed();
+        if (sei) receive_vfgs_sei(*sei);
         if (!vfgs_has_params) {
             vfgs->pass_through(src, dst);
             return r;
@@ -207,6 +193,25 @@ struct Session::Impl {
         r.grain_applied = !vfgs_cancelled;
         if (vfgs_cancelled) r.message = "film grain cancelled (film_grain_characteristics_cancel_flag = 1)";
         return r;
+    }
+
+    [[noreturn]] static void refuse_vfgs_seed() {
+        throw Error(ErrorCode::kUnsupported,
+                    "seed: the vfgs flavour never reseeds per picture (VersatileFilmGrain); set vfgs_seed at creation");
+    }
+
+    // vfgs keeps the last parameter set in force (the reference has no persistence rules); a
+    // cancel or an invalid set stays in force until the next SEI.
+    void receive_vfgs_sei(const session::PendingSei& sei) {
+        vfgs_has_params = true;
+        vfgs_cancelled = sei.params.film_grain_characteristics_cancel_flag;
+        vfgs_invalid.clear();
+        try {
+            vfgs->set_params(sei.params);
+        } catch (const Error& e) {
+            if (!options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
+            vfgs_invalid = e.what();
+        }
     }
 
     bool vfgs_has_params = false;
@@ -373,18 +378,38 @@ void Session::reset() {
     s.make_synthesizers();
 }
 
-void Session::skip_picture(const FrameInfo* info) {
+void Session::skip_picture(const FrameInfo* info) { skip_picture(0, 0, info); }
+
+void Session::skip_picture(int luma_width, int luma_height, const FrameInfo* info) {
     Impl& s = *impl_;
+    if (s.model == Impl::Model::kFgc && !s.fgc && (luma_width < 1 || luma_height < 1)) {
+        std::string msg = "the vfgs flavour follows a stream only with the picture size (skip_picture(width, height)): "
+                          "VersatileFilmGrain's random state steps once per 16x16 block of every picture; got ";
+        msg += std::to_string(luma_width);
+        msg += 'x';
+        msg += std::to_string(luma_height);
+        throw Error(ErrorCode::kUnsupported, msg);
+    }
     const FrameInfo fi = s.info_or_next(info);
     switch (s.model) {
     case Impl::Model::kNone:
     case Impl::Model::kAv1: break;
     case Impl::Model::kFgc: {
-        if (!s.fgc)
-            throw Error(ErrorCode::kUnsupported,
-                        "the vfgs flavour cannot follow a stream without synthesizing it (VersatileFilmGrain's random "
-                        "state runs through the samples of every picture)");
         std::optional<session::PendingSei> sei = s.pending.take_for(fi.ids);
+        if (!s.fgc) {
+            if (fi.seed) Impl::refuse_vfgs_seed();
+            if (sei) s.receive_vfgs_sei(*sei);
+            // apply() passes such pictures through without moving the random state, and so it
+            // does a picture it refuses under passthrough_invalid
+            if (s.vfgs_has_params && s.vfgs_invalid.empty()) {
+                try {
+                    s.vfgs->skip(luma_width, luma_height);
+                } catch (const Error& e) {
+                    if (!s.options.passthrough_invalid || !is_parameter_problem(e.code())) throw;
+                }
+            }
+            break;
+        }
         if (sei) s.fgc->receive_sei(sei->params, sei->codec);
         s.fgc->skip_picture();
         break;

@@ -93,6 +93,18 @@ def test_apply_parameter_files_equal_cli(client, tmp_path, persistence, per_task
     assert (tmp_path / "dist.y4m").read_bytes() == (tmp_path / "cli.y4m").read_bytes()
 
 
+def test_apply_vfgs_ranges_equal_cli(client, tmp_path):
+    # VersatileFilmGrain's random state runs through every picture: each range jumps it to
+    # where the pictures before it leave it (Session.skip_picture with the picture size)
+    src = tmp_path / "in.y4m"
+    write_y4m(src, clip(200, 130, 9, seed=4), 200, 130)
+    opts = ["--sei", sparse_sei_files(tmp_path), "--flavour", "vfgs", "-q"]
+    distributed.apply_job(["-i", str(src), "-o", str(tmp_path / "dist.y4m"), *opts], client, frames_per_task=2)
+    run_tool("apply", "-i", str(src), "-o", str(tmp_path / "cli.y4m"), *opts)
+    assert (tmp_path / "dist.y4m").read_bytes() == (tmp_path / "cli.y4m").read_bytes()
+    assert (tmp_path / "cli.y4m").read_bytes() != src.read_bytes()
+
+
 def test_apply_afgs1_payloads_equal_cli(client, tmp_path):
     case = CONFORMANCE / "afgs1-176x144-420p8-single"
     import lzma

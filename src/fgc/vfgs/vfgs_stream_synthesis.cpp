@@ -3,14 +3,16 @@
 // the picture format change.
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "core/plane_layout.hpp"
 #include "core/thread_pool.hpp"
 #include "fgc/vfgs/vfgs_frame_setup.hpp"
 #include "fgc/vfgs/vfgs_frame_synthesis.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
-#include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_picture_synthesis.hpp"
+#include "fgc/vfgs/vfgs_random.hpp"
+#include "fgc/vfgs/vfgs_stripe_states.hpp"
 #include "fgc/vfgs/vfgs_templates.hpp"
 #include "filmgrain/error.hpp"
 #include "filmgrain/vfgs.hpp"
@@ -84,13 +86,17 @@ namespace {
 [[noreturn]] void unsupported(const std::string& msg) { throw Error(ErrorCode::kUnsupported, "vfgs: " + msg); }
 [[noreturn]] void bad_arg(const std::string& msg) { throw Error(ErrorCode::kInvalidArgument, "vfgs: " + msg); }
 
+// The reference asserts width > 128 and height >= 128.
+void check_picture_size(int width, int height) {
+    if (width <= 128) unsupported(out_of_range_message("width", width, 129, 65535) + " (VFGS limit)");
+    if (height < 128) unsupported(out_of_range_message("height", height, 128, 65535) + " (VFGS limit)");
+}
+
 void check_frame(const FrameView& src, const FrameView& dst, int out_bd) {
     if (src.format == ChromaFormat::k400) unsupported("chroma format 4:0:0 is not supported by VFGS (allowed 4:2:0, 4:2:2, 4:4:4)");
     if (src.bit_depth != 8 && src.bit_depth != 10)
         unsupported("bit_depth = " + std::to_string(src.bit_depth) + " is not supported by VFGS (allowed 8, 10)");
-    // The reference asserts width > 128 and height >= 128.
-    if (src.width <= 128) unsupported(out_of_range_message("width", src.width, 129, 65535) + " (VFGS limit)");
-    if (src.height < 128) unsupported(out_of_range_message("height", src.height, 128, 65535) + " (VFGS limit)");
+    check_picture_size(src.width, src.height);
     if (chroma_shift_x(src.format) && (src.width & 1))
         unsupported("width = " + std::to_string(src.width) + " is odd; VFGS needs even widths for subsampled chroma");
     if (chroma_shift_y(src.format) && (src.height & 1))
@@ -149,6 +155,17 @@ void Synthesizer::apply(const FrameView& src, const FrameView& dst) {
     if (!m.prepared || m.prepared_format != src.format || m.prepared_bit_depth != src.bit_depth)
         m.prepare(src.format, src.bit_depth);
     m.frames.apply(src, dst, m.setup, m.cursor);
+}
+
+void Synthesizer::skip(int luma_width, int luma_height) {
+    Impl& m = *impl_;
+    if (!m.params) bad_arg("skip() called before set_params()");
+    check_picture_size(luma_width, luma_height);
+    if (m.params->film_grain_characteristics_cancel_flag) return;
+    // The stripe starts apply() would compute; only where they leave the cursor is kept.
+    std::vector<uint32_t> starts;
+    plan_stripe_states(m.cursor, stripes_per_frame(luma_height), LfsrJump(static_cast<uint64_t>(blocks_per_stripe(luma_width))),
+                       starts);
 }
 
 }  // namespace filmgrain::vfgs
