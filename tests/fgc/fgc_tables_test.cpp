@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/md5.hpp"
 #include "fgc/fgc_tables.hpp"
 #include "fgc/pseudo_random.hpp"
 
@@ -53,6 +54,20 @@ TEST(FgcTables, GaussianTableIsRdd5s) {
     EXPECT_NEAR(sd, 55, 10) << "a zero-mean Gaussian table of standard deviation ~ 50..60";
     EXPECT_EQ(kSeedLut[0], 747538460u);
     EXPECT_EQ(kSeedLut[255], 1358954497u);
+}
+
+// The whole tables against an independent copy: the MD5 of the 2048 int8 Gaussian values and
+// of the 256 seeds (uint32, little-endian) as FFmpeg's h274 stores them, read from the bytes of
+// Debian 12's libavcodec 59 (FFmpeg 5.1) and Debian 13's libavcodec 61 (FFmpeg 7.1), which
+// agree with each other and with HM's SEIFilmGrainSynthesizer.cpp. One wrong entry anywhere
+// changes the hash; the spot values above say where to look.
+TEST(FgcTables, WholeTablesEqualFfmpegsH274Tables) {
+    static_assert(sizeof(kGaussianLut) == 2048 && sizeof(kSeedLut) == 1024);
+    EXPECT_EQ(filmgrain::md5_hex(kGaussianLut, sizeof(kGaussianLut)), "2acb462fdeec947a5f8a10d4db9abd74");
+    unsigned char seeds[1024];
+    for (int i = 0; i < 256; i++)
+        for (int b = 0; b < 4; b++) seeds[4 * i + b] = static_cast<unsigned char>(kSeedLut[i] >> (8 * b));
+    EXPECT_EQ(filmgrain::md5_hex(seeds, sizeof(seeds)), "cf0c50b25fcc017fa5cf48277b01f763");
 }
 
 // The integer matrices approximate the orthonormal DCT-2 basis scaled by 64*sqrt(2) (VVC)
