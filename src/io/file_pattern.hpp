@@ -6,9 +6,10 @@
 
 namespace filmgrain::io {
 
-// A per-picture file name pattern: exactly one conversion %d / %u / %i, optionally
-// zero-padded to a width (%04d), and "%%" for a literal '%'. A name with no valid
-// conversion, or with any other '%', is not a pattern but a plain file name.
+// A per-picture file name pattern: exactly one conversion %d / %u / %i, optionally padded
+// to a width of one or two digits (%4d, %04d: at most 99), and "%%" for a literal '%'. A
+// name with no valid conversion, or with any other '%', is not a pattern but a plain file
+// name.
 class FilePattern {
 public:
     static std::optional<FilePattern> parse(const std::string& name);

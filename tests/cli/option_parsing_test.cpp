@@ -61,6 +61,11 @@ TEST(OptionParsing, FilePatternsAndPlainNames) {
     ASSERT_TRUE(p);
     EXPECT_EQ(p->name_for(3), "100%/a3.bin");
     // not patterns: plain files, never formats
-    for (const char* plain : {"x%n.bin", "strength100%.fgc.bin", "a%s.bin", "a%d%d.bin", "plain.bin", "%", "a%-5d"})
+    // the width has one or two digits (found by the fuzzer: %96u pads to 96 characters)
+    p = FilePattern::parse("a%96u");
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p->name_for(5), "a" + std::string(95, ' ') + "5");
+    for (const char* plain : {"x%n.bin", "strength100%.fgc.bin", "a%s.bin", "a%d%d.bin", "plain.bin", "%", "a%-5d",
+                              "a%100d", "a%0123d"})
         EXPECT_FALSE(FilePattern::parse(plain)) << plain;
 }
