@@ -24,8 +24,10 @@ namespace avx512 {
 
 // Whether the CPU has AVX512-VBMI: Highway 1.0's AVX3 target does not require it (Skylake
 // servers lack it), and its AVX3_DL target is not compiled, so the AVX3 kernels check.
+// FILMGRAIN_NO_AVX512VBMI (any value) makes a VBMI machine take the path such CPUs take, so
+// that the suite runs it (tests/CMakeLists.txt); it is read once, like the CPU itself.
 inline bool HasAvx512Vbmi() {
-    static const bool has = __builtin_cpu_supports("avx512vbmi");
+    static const bool has = __builtin_cpu_supports("avx512vbmi") && !std::getenv("FILMGRAIN_NO_AVX512VBMI");
     return has;
 }
 
