@@ -194,8 +194,9 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
             rect.x1 = std::min(rect.x0 + tile, r.x + r.w);
             rect.y1 = std::min(rect.y0 + tile, r.y + r.h);
             const InputRect reach = sample_reach(points, rect, p.zoom);
+            // The mask estimator paints its masks from the grains: it needs no bin lists.
             field.generate(intensity, law, k, plane_seed, reach.x0, reach.y0, reach.x1, reach.y1,
-                           algo == BooleanAlgorithm::kPixelWise);
+                           algo == BooleanAlgorithm::kPixelWise && !by_masks);
             grains += field.grains().size();
             SampleSchedule sched;
             sched.points = &points;
