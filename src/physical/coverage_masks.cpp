@@ -84,13 +84,17 @@ void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const Ma
     }
 }
 
-void bin_coverage_masks(const GrainField& field, const SampleClasses& classes, bool reference,
-                        std::vector<uint64_t>& masks) {
-    const MaskLayout layout = mask_layout(field.grid(), classes);
+std::size_t paint_tile_masks(GrainField& field, const CellIntensity& intensity, const GrainRadiusLaw& radius,
+                             uint64_t seed, double x0, double y0, double x1, double y1, const SampleClasses& classes,
+                             bool reference, std::vector<uint64_t>& masks) {
+    const MaskLayout layout =
+        mask_layout(bin_grid_over(x0, y0, x1, y1, classes.cells_per_pixel), classes);
     masks.assign(std::size_t(layout.grid.nbx * layout.grid.nby) * std::size_t(layout.words), 0);
-    const auto& grains = field.grains();
-    (reference ? paint_coverage_masks_reference : paint_coverage_masks_optimized)(grains.data(), grains.size(), layout,
-                                                                                  classes, masks.data());
+    auto* paint = reference ? paint_coverage_masks_reference : paint_coverage_masks_optimized;
+    return field.generate_by_cell_rows(intensity, radius, classes.cells_per_pixel, seed, x0, y0, x1, y1,
+                                       [&](const std::vector<Grain>& grains) {
+                                           paint(grains.data(), grains.size(), layout, classes, masks.data());
+                                       });
 }
 
 }  // namespace filmgrain::physical

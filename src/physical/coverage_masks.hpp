@@ -55,8 +55,11 @@ void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const Ma
 void paint_coverage_masks_optimized(const Grain* grains, std::size_t n, const MaskLayout& layout,
                                     const SampleClasses& classes, uint64_t* masks);
 
-// The masks of every bin of the field's grid (row-major, `words` per bin), from its grains.
-void bin_coverage_masks(const GrainField& field, const SampleClasses& classes, bool reference,
-                        std::vector<uint64_t>& masks);
+// Generates the grains that reach [x0, x1] x [y0, y1] (GrainField::generate_by_cell_rows)
+// and paints the masks of every bin of the grid over that rectangle (row-major, `words` per
+// bin) from them. Returns the grain count.
+std::size_t paint_tile_masks(GrainField& field, const CellIntensity& intensity, const GrainRadiusLaw& radius,
+                             uint64_t seed, double x0, double y0, double x1, double y1, const SampleClasses& classes,
+                             bool reference, std::vector<uint64_t>& masks);
 
 }  // namespace filmgrain::physical

@@ -79,15 +79,20 @@ void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity
     }
 }
 
+GrainField::CellBox GrainField::cells_reaching(const CellIntensity& intensity, const GrainRadiusLaw& radius, double x0,
+                                               double y0, double x1, double y1) {
+    const double rm = radius.max_radius();
+    const int kc = intensity.cells_per_pixel();
+    return {int64_t(std::floor((x0 - rm) * kc)), int64_t(std::floor((y0 - rm) * kc)), int64_t(std::floor((x1 + rm) * kc)),
+            int64_t(std::floor((y1 + rm) * kc))};
+}
+
 void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel,
                           uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins) {
     grains_.clear();
-    const double rm = radius.max_radius();
-    const int kc = intensity.cells_per_pixel();
-    const int64_t cx0 = int64_t(std::floor((x0 - rm) * kc)), cx1 = int64_t(std::floor((x1 + rm) * kc));
-    const int64_t cy0 = int64_t(std::floor((y0 - rm) * kc)), cy1 = int64_t(std::floor((y1 + rm) * kc));
-    for (int64_t cy = cy0; cy <= cy1; cy++)
-        for (int64_t cx = cx0; cx <= cx1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
+    const CellBox c = cells_reaching(intensity, radius, x0, y0, x1, y1);
+    for (int64_t cy = c.y0; cy <= c.y1; cy++)
+        for (int64_t cx = c.x0; cx <= c.x1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
     grid_ = bin_grid_over(x0, y0, x1, y1, bins_per_pixel);
     if (!build_bins) return;
 

@@ -55,6 +55,24 @@ public:
     void generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel, uint64_t seed,
                   double x0, double y0, double x1, double y1, bool build_bins);
 
+    // As generate() without bins, but the grains go to use(const std::vector<Grain>&) one row
+    // of cells at a time and are not kept: a row is still in cache when it is used. Returns
+    // how many grains there were; grains() holds only the last row afterwards.
+    template <typename Use>
+    std::size_t generate_by_cell_rows(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel,
+                                      uint64_t seed, double x0, double y0, double x1, double y1, Use&& use) {
+        const CellBox c = cells_reaching(intensity, radius, x0, y0, x1, y1);
+        grid_ = bin_grid_over(x0, y0, x1, y1, bins_per_pixel);
+        std::size_t total = 0;
+        for (int64_t cy = c.y0; cy <= c.y1; cy++) {
+            grains_.clear();
+            for (int64_t cx = c.x0; cx <= c.x1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
+            total += grains_.size();
+            use(static_cast<const std::vector<Grain>&>(grains_));
+        }
+        return total;
+    }
+
     const std::vector<Grain>& grains() const { return grains_; }
     // Whether the point at bin-local (lx, ly) of global bin (bx, by) is inside some grain of
     // that bin. The bin must lie in the rectangle, and the bins must have been built.
@@ -78,6 +96,13 @@ public:
     const std::vector<BinnedGrain>& binned_grains() const { return binned_; }
 
 private:
+    // The cells whose grains can reach [x0, x1] x [y0, y1].
+    struct CellBox {
+        int64_t x0, y0, x1, y1;
+    };
+    static CellBox cells_reaching(const CellIntensity& intensity, const GrainRadiusLaw& radius, double x0, double y0,
+                                  double x1, double y1);
+
     BinGrid grid_;
     std::vector<Grain> grains_;
     std::vector<uint32_t> start_;

@@ -77,8 +77,9 @@ TEST_P(CoverageMaskEquivalence, OptimizedEqualsReference) {
 INSTANTIATE_TEST_SUITE_P(Targets, CoverageMaskEquivalence, ::testing::ValuesIn(simd::available_targets()),
                          [](const ::testing::TestParamInfo<simd::Target>& i) { return i.param.name; });
 
-// The painted masks against the bin lists the pixel-wise estimator searches: bit j of a bin
-// is set exactly when its class point j is covered by a grain of the bin's list.
+// The masks painted row of cells by row of cells against the bin lists the pixel-wise
+// estimator searches: bit j of a bin is set exactly when its class point j is covered by a
+// grain of the bin's list.
 TEST(CoverageMasks, PaintedMasksEqualTheBinListsLookUp) {
     FloatPlane u(24, 20);
     for (int y = 0; y < u.height; y++)
@@ -95,8 +96,11 @@ TEST(CoverageMasks, PaintedMasksEqualTheBinListsLookUp) {
         field.generate(intensity, law, k, 77, 2.3, 1.7, 15.2, 12.9, true);
         for (const bool reference : {true, false}) {
             std::vector<uint64_t> masks;
-            bin_coverage_masks(field, c, reference, masks);
+            GrainField painter;
+            EXPECT_EQ(paint_tile_masks(painter, intensity, law, 77, 2.3, 1.7, 15.2, 12.9, c, reference, masks),
+                      field.grains().size());
             const MaskLayout layout = mask_layout(field.grid(), c);
+            ASSERT_EQ(masks.size(), std::size_t(field.bins_x() * field.bins_y()) * std::size_t(c.words));
             for (int64_t by = 0; by < field.bins_y(); by++)
                 for (int64_t bx = 0; bx < field.bins_x(); bx++) {
                     const uint32_t cls = layout.row_class[std::size_t(by)] + layout.col_class[std::size_t(bx)];
