@@ -11,6 +11,7 @@
 #include "filmgrain/error.hpp"
 #include "physical/boolean_model.hpp"
 #include "physical/cell_random.hpp"
+#include "physical/coverage_masks.hpp"
 #include "physical/grain_field.hpp"
 #include "physical/monte_carlo_estimators.hpp"
 #include "physical/monte_carlo_offsets.hpp"
@@ -194,9 +195,14 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
             rect.x1 = std::min(rect.x0 + tile, r.x + r.w);
             rect.y1 = std::min(rect.y0 + tile, r.y + r.h);
             const InputRect reach = sample_reach(points, rect, p.zoom);
-            field.generate(intensity, law, k, plane_seed, reach.x0, reach.y0, reach.x1, reach.y1,
-                           algo == BooleanAlgorithm::kPixelWise);
-            grains += field.grains().size();
+            if (by_masks) {
+                grains += paint_tile_masks(field, intensity, law, plane_seed, reach.x0, reach.y0, reach.x1, reach.y1,
+                                           classes, p.reference_kernels, est.masks);
+            } else {
+                field.generate(intensity, law, k, plane_seed, reach.x0, reach.y0, reach.x1, reach.y1,
+                               algo == BooleanAlgorithm::kPixelWise);
+                grains += field.grains().size();
+            }
             SampleSchedule sched;
             sched.points = &points;
             sched.classes = by_masks ? &classes : nullptr;
@@ -204,7 +210,7 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
             sched.min_samples = std::min(p.min_samples, n_offsets);
             sched.reference_kernels = p.reference_kernels;
             if (by_masks)
-                estimate_pixel_wise_by_masks(field, rect, sched, est);
+                estimate_pixel_wise_by_masks(field.grid(), rect, sched, est);
             else if (algo == BooleanAlgorithm::kPixelWise)
                 estimate_pixel_wise(field, rect, sched, est);
             else

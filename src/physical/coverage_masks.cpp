@@ -1,6 +1,7 @@
 #include "physical/coverage_masks.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -47,40 +48,53 @@ SampleClasses group_samples_by_class(const SamplePoints& points) {
     return c;
 }
 
-void coverage_mask_reference(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
-                             uint64_t* mask, int words) {
-    std::fill(mask, mask + words, 0);
-    for (uint32_t j = 0; j < m; j++)
-        for (uint32_t i = 0; i < n; i++)
-            if (inside_grain(lx[j], ly[j], grains[i].x, grains[i].y, grains[i].r2)) {
-                mask[j / 64] |= uint64_t(1) << (j % 64);
-                break;
-            }
+MaskLayout mask_layout(const BinGrid& grid, const SampleClasses& classes) {
+    MaskLayout l;
+    l.grid = grid;
+    l.words = classes.words;
+    const int k = classes.cells_per_pixel;
+    l.col_class.resize(std::size_t(grid.nbx));
+    l.row_class.resize(std::size_t(grid.nby));
+    for (int64_t bx = 0; bx < grid.nbx; bx++) l.col_class[std::size_t(bx)] = uint32_t(positive_mod(grid.bx0 + bx, k));
+    for (int64_t by = 0; by < grid.nby; by++)
+        l.row_class[std::size_t(by)] = uint32_t(positive_mod(grid.by0 + by, k) * k);
+    return l;
 }
 
-void bin_coverage_masks(const GrainField& field, const SampleClasses& classes, bool reference,
-                        std::vector<uint64_t>& masks) {
-    const int k = classes.cells_per_pixel, words = classes.words;
-    const int64_t nbx = field.bins_x(), nby = field.bins_y();
-    masks.resize(std::size_t(nbx * nby) * words);
-    const auto& start = field.bin_start();
-    const BinnedGrain* grains = field.binned_grains().data();
-    auto* kernel = reference ? coverage_mask_reference : coverage_mask_optimized;
-    for (int64_t by = 0; by < nby; by++) {
-        const int ry = positive_mod(field.first_bin_y() + by, k);
-        for (int64_t bx = 0; bx < nbx; bx++) {
-            const std::size_t b = std::size_t(by * nbx + bx);
-            uint64_t* mask = masks.data() + b * words;
-            const uint32_t cls = uint32_t(ry * k + positive_mod(field.first_bin_x() + bx, k));
-            const uint32_t m = classes.size[cls];
-            if (m == 0 || start[b] == start[b + 1]) {
-                std::memset(mask, 0, sizeof(uint64_t) * std::size_t(words));
-                continue;
+void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const MaskLayout& layout,
+                                    const SampleClasses& classes, uint64_t* masks) {
+    const BinGrid& grid = layout.grid;
+    const std::size_t words = std::size_t(layout.words);
+    for (std::size_t i = 0; i < n; i++) {
+        const Grain& g = grains[i];
+        const BinRange b = bins_met_by(g, std::sqrt(g.r2), grid);
+        const float r2 = r2_in_bins(g.r2, grid.k);
+        for (int64_t by = b.ly; by <= b.hy; by++) {
+            const float gy = bin_local(g.y * grid.k, by + grid.by0);
+            for (int64_t bx = b.lx; bx <= b.hx; bx++) {
+                const float gx = bin_local(g.x * grid.k, bx + grid.bx0);
+                const uint32_t cls = layout.row_class[std::size_t(by)] + layout.col_class[std::size_t(bx)];
+                const float* lx = classes.lx.data() + classes.begin[cls];
+                const float* ly = classes.ly.data() + classes.begin[cls];
+                uint64_t* mask = masks + std::size_t(by * grid.nbx + bx) * words;
+                for (uint32_t j = 0; j < classes.size[cls]; j++)
+                    if (inside_grain(lx[j], ly[j], gx, gy, r2)) mask[j / 64] |= uint64_t(1) << (j % 64);
             }
-            kernel(grains + start[b], start[b + 1] - start[b], classes.lx.data() + classes.begin[cls],
-                   classes.ly.data() + classes.begin[cls], m, mask, words);
         }
     }
+}
+
+std::size_t paint_tile_masks(GrainField& field, const CellIntensity& intensity, const GrainRadiusLaw& radius,
+                             uint64_t seed, double x0, double y0, double x1, double y1, const SampleClasses& classes,
+                             bool reference, std::vector<uint64_t>& masks) {
+    const MaskLayout layout =
+        mask_layout(bin_grid_over(x0, y0, x1, y1, classes.cells_per_pixel), classes);
+    masks.assign(std::size_t(layout.grid.nbx * layout.grid.nby) * std::size_t(layout.words), 0);
+    auto* paint = reference ? paint_coverage_masks_reference : paint_coverage_masks_optimized;
+    return field.generate_by_cell_rows(intensity, radius, classes.cells_per_pixel, seed, x0, y0, x1, y1,
+                                       [&](const std::vector<Grain>& grains) {
+                                           paint(grains.data(), grains.size(), layout, classes, masks.data());
+                                       });
 }
 
 }  // namespace filmgrain::physical

@@ -9,9 +9,11 @@
 // is the same test on the same float coordinates as every other estimator (inside_grain),
 // so the output is bit-identical to theirs.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "physical/bin_grid.hpp"
 #include "physical/grain_field.hpp"
 #include "physical/sample_points.hpp"
 
@@ -35,15 +37,29 @@ struct SampleClasses {
 // Unit zoom only.
 SampleClasses group_samples_by_class(const SamplePoints& points);
 
-// Bit j of mask (words x 64 bits) = whether point (lx[j], ly[j]) is inside one of the n
-// grains; bits j >= m are zero. The scalar reference, and the vector kernel that must equal it.
-void coverage_mask_reference(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
-                             uint64_t* mask, int words);
-void coverage_mask_optimized(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
-                             uint64_t* mask, int words);
+// The class of each bin of a grid: class = row_class[by] + col_class[bx] (grid-relative).
+struct MaskLayout {
+    BinGrid grid;
+    int words = 1;
+    std::vector<uint32_t> row_class, col_class;
+};
+MaskLayout mask_layout(const BinGrid& grid, const SampleClasses& classes);
 
-// The masks of every bin of the field's grid (row-major, `words` per bin).
-void bin_coverage_masks(const GrainField& field, const SampleClasses& classes, bool reference,
-                        std::vector<uint64_t>& masks);
+// ORs into `masks` (the layout's bins, row-major, `words` per bin) the class samples each
+// grain covers, in every bin bins_met_by() gives the grain: bit j of a bin's mask is set when
+// its class point j is inside one of those grains. Painting grain by grain gives each bin the
+// OR over the grains its list would hold (GrainField), with no list to build. The scalar
+// reference, and the vector kernel that must equal it.
+void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const MaskLayout& layout,
+                                    const SampleClasses& classes, uint64_t* masks);
+void paint_coverage_masks_optimized(const Grain* grains, std::size_t n, const MaskLayout& layout,
+                                    const SampleClasses& classes, uint64_t* masks);
+
+// Generates the grains that reach [x0, x1] x [y0, y1] (GrainField::generate_by_cell_rows)
+// and paints the masks of every bin of the grid over that rectangle (row-major, `words` per
+// bin) from them. Returns the grain count.
+std::size_t paint_tile_masks(GrainField& field, const CellIntensity& intensity, const GrainRadiusLaw& radius,
+                             uint64_t seed, double x0, double y0, double x1, double y1, const SampleClasses& classes,
+                             bool reference, std::vector<uint64_t>& masks);
 
 }  // namespace filmgrain::physical

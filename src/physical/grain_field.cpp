@@ -79,51 +79,44 @@ void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity
     }
 }
 
-void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel,
-                          uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins) {
-    k_ = bins_per_pixel;
-    grains_.clear();
+GrainField::CellBox GrainField::cells_reaching(const CellIntensity& intensity, const GrainRadiusLaw& radius, double x0,
+                                               double y0, double x1, double y1) {
     const double rm = radius.max_radius();
     const int kc = intensity.cells_per_pixel();
-    const int64_t cx0 = int64_t(std::floor((x0 - rm) * kc)), cx1 = int64_t(std::floor((x1 + rm) * kc));
-    const int64_t cy0 = int64_t(std::floor((y0 - rm) * kc)), cy1 = int64_t(std::floor((y1 + rm) * kc));
-    for (int64_t cy = cy0; cy <= cy1; cy++)
-        for (int64_t cx = cx0; cx <= cx1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
+    return {int64_t(std::floor((x0 - rm) * kc)), int64_t(std::floor((y0 - rm) * kc)), int64_t(std::floor((x1 + rm) * kc)),
+            int64_t(std::floor((y1 + rm) * kc))};
+}
+
+void GrainField::generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel,
+                          uint64_t seed, double x0, double y0, double x1, double y1, bool build_bins) {
+    grains_.clear();
+    const CellBox c = cells_reaching(intensity, radius, x0, y0, x1, y1);
+    for (int64_t cy = c.y0; cy <= c.y1; cy++)
+        for (int64_t cx = c.x0; cx <= c.x1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
+    grid_ = bin_grid_over(x0, y0, x1, y1, bins_per_pixel);
     if (!build_bins) return;
 
-    bx0_ = int64_t(std::floor(x0 * k_));
-    by0_ = int64_t(std::floor(y0 * k_));
-    nbx_ = int64_t(std::floor(x1 * k_)) - bx0_ + 1;
-    nby_ = int64_t(std::floor(y1 * k_)) - by0_ + 1;
-    start_.assign(std::size_t(nbx_ * nby_) + 1, 0);
-    // A pad (in bin units) so that every grain the float test of inside_grain() can accept
-    // for a point of a bin is listed in that bin: float rounding of bin-local coordinates is
-    // below 1e-6 bin units, the pad is a hundred times that.
-    constexpr double kPad = 1e-4;
+    const int64_t nbx = grid_.nbx;
+    start_.assign(std::size_t(nbx * grid_.nby) + 1, 0);
     // Each grain's bin range is computed once, for the count and again for the fill.
     ranges_.resize(grains_.size());
     for (std::size_t i = 0; i < grains_.size(); i++) {
-        const Grain& g = grains_[i];
-        const double r = std::sqrt(g.r2);
-        BinRange& b = ranges_[i];
-        b.lx = std::max<int64_t>(floor_to_int((g.x - r) * k_ - kPad) - bx0_, 0);
-        b.hx = std::min<int64_t>(floor_to_int((g.x + r) * k_ + kPad) - bx0_, nbx_ - 1);
-        b.ly = std::max<int64_t>(floor_to_int((g.y - r) * k_ - kPad) - by0_, 0);
-        b.hy = std::min<int64_t>(floor_to_int((g.y + r) * k_ + kPad) - by0_, nby_ - 1);
+        const BinRange b = ranges_[i] = bins_met_by(grains_[i], std::sqrt(grains_[i].r2), grid_);
         for (int64_t by = b.ly; by <= b.hy; by++)
-            for (int64_t bx = b.lx; bx <= b.hx; bx++) start_[std::size_t(by * nbx_ + bx) + 1]++;
+            for (int64_t bx = b.lx; bx <= b.hx; bx++) start_[std::size_t(by * nbx + bx) + 1]++;
     }
     for (std::size_t i = 1; i < start_.size(); i++) start_[i] += start_[i - 1];
     binned_.resize(start_.back());
     fill_.assign(start_.begin(), start_.end() - 1);
+    const double k = grid_.k;
     for (std::size_t i = 0; i < grains_.size(); i++) {
         const Grain& g = grains_[i];
-        const int64_t lx = ranges_[i].lx, hx = ranges_[i].hx, ly = ranges_[i].ly, hy = ranges_[i].hy;
-        const float r2k = r2_in_bins(g.r2, k_);
-        for (int64_t by = ly; by <= hy; by++)
-            for (int64_t bx = lx; bx <= hx; bx++)
-                binned_[fill_[std::size_t(by * nbx_ + bx)]++] = {bin_local(g.x * k_, bx + bx0_),
-                                                                 bin_local(g.y * k_, by + by0_), r2k};
+        const BinRange b = ranges_[i];
+        const float r2k = r2_in_bins(g.r2, k);
+        for (int64_t by = b.ly; by <= b.hy; by++)
+            for (int64_t bx = b.lx; bx <= b.hx; bx++)
+                binned_[fill_[std::size_t(by * nbx + bx)]++] = {bin_local(g.x * k, bx + grid_.bx0),
+                                                                bin_local(g.y * k, by + grid_.by0), r2k};
     }
 }
 

@@ -9,36 +9,11 @@
 #include <vector>
 
 #include "core/float_plane.hpp"
+#include "physical/bin_grid.hpp"
+#include "physical/grain_geometry.hpp"
 #include "physical/grain_radius.hpp"
 
 namespace filmgrain::physical {
-
-// floor() for the bin look-up without a libm call.
-inline int64_t floor_to_int(double v) {
-    const int64_t t = int64_t(v);
-    return t - (double(t) > v);
-}
-
-struct Grain {
-    double x, y, r2;
-};
-
-// The coverage test is made in the frame of the bin that holds the sample point: point and
-// grain centre relative to that bin's corner, in bin units, rounded to float. Bin corners
-// are global (a multiple of 1/cells_per_pixel), so the rounding depends on the point and the
-// grain only, never on the tile or the thread; and the pixel-wise and grain-wise estimators
-// both call these helpers, so they still agree exactly. Float halves the memory a bin
-// occupies, which is what the pixel-wise look-up is bound by.
-struct BinnedGrain {
-    float x, y, r2;  // centre relative to the bin corner, squared radius, in bin units
-};
-
-inline float bin_local(double scaled, int64_t bin) { return float(scaled - double(bin)); }
-inline float r2_in_bins(double r2, double cells_per_pixel) { return float(r2 * (cells_per_pixel * cells_per_pixel)); }
-inline bool inside_grain(float lx, float ly, float gx, float gy, float r2) {
-    const float dx = lx - gx, dy = ly - gy;
-    return dx * dx + dy * dy <= r2;
-}
 
 // Per-input-pixel Poisson law of a cell's grain count, over a box of input pixels.
 class CellIntensity {
@@ -68,48 +43,71 @@ constexpr int kMaxGrainsPerCell = 4096;
 void generate_cell_grains(int64_t cx, int64_t cy, const CellIntensity& intensity, const GrainRadiusLaw& radius,
                           uint64_t seed, std::vector<Grain>& out);
 
-// The grains that can cover any point of [x0, x1] x [y0, y1] (input-pixel units), binned on
-// the cell grid over that rectangle: a grain is listed in every bin its bounding square meets.
+// The grains that can cover any point of [x0, x1] x [y0, y1] (input-pixel units), and
+// optionally their bins: a grain is listed in every bin of the grid over that rectangle
+// that bins_met_by() gives it.
 // One field is reused tile after tile: its vectors keep their capacity, so a worker stops
 // allocating (and the kernel stops zeroing fresh pages) after its first tile.
 class GrainField {
 public:
-    // Bins are 1/bins_per_pixel wide; the grains come from the intensity's own cells.
+    // Bins are 1/bins_per_pixel wide; the grains come from the intensity's own cells. The
+    // grid is set either way; the bin lists are built only with build_bins.
     void generate(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel, uint64_t seed,
                   double x0, double y0, double x1, double y1, bool build_bins);
 
+    // As generate() without bins, but the grains go to use(const std::vector<Grain>&) one row
+    // of cells at a time and are not kept: a row is still in cache when it is used. Returns
+    // how many grains there were; grains() holds only the last row afterwards.
+    template <typename Use>
+    std::size_t generate_by_cell_rows(const CellIntensity& intensity, const GrainRadiusLaw& radius, int bins_per_pixel,
+                                      uint64_t seed, double x0, double y0, double x1, double y1, Use&& use) {
+        const CellBox c = cells_reaching(intensity, radius, x0, y0, x1, y1);
+        grid_ = bin_grid_over(x0, y0, x1, y1, bins_per_pixel);
+        std::size_t total = 0;
+        for (int64_t cy = c.y0; cy <= c.y1; cy++) {
+            grains_.clear();
+            for (int64_t cx = c.x0; cx <= c.x1; cx++) generate_cell_grains(cx, cy, intensity, radius, seed, grains_);
+            total += grains_.size();
+            use(static_cast<const std::vector<Grain>&>(grains_));
+        }
+        return total;
+    }
+
     const std::vector<Grain>& grains() const { return grains_; }
     // Whether the point at bin-local (lx, ly) of global bin (bx, by) is inside some grain of
-    // that bin. The bin must lie in the rectangle.
+    // that bin. The bin must lie in the rectangle, and the bins must have been built.
     bool covered_in_bin(int64_t bx, int64_t by, float lx, float ly) const {
-        const std::size_t b = std::size_t(by - by0_) * nbx_ + std::size_t(bx - bx0_);
+        const std::size_t b = std::size_t(by - grid_.by0) * grid_.nbx + std::size_t(bx - grid_.bx0);
         for (uint32_t i = start_[b], e = start_[b + 1]; i < e; i++) {
             const BinnedGrain& g = binned_[i];
             if (inside_grain(lx, ly, g.x, g.y, g.r2)) return true;
         }
         return false;
     }
-    double cells_per_pixel() const { return k_; }
+    double cells_per_pixel() const { return grid_.k; }
+    const BinGrid& grid() const { return grid_; }
     // The bin grid: global coordinates of its first bin, its size, and per bin (row-major)
     // the range [bin_start()[b], bin_start()[b + 1]) of binned_grains().
-    int64_t first_bin_x() const { return bx0_; }
-    int64_t first_bin_y() const { return by0_; }
-    int64_t bins_x() const { return nbx_; }
-    int64_t bins_y() const { return nby_; }
+    int64_t first_bin_x() const { return grid_.bx0; }
+    int64_t first_bin_y() const { return grid_.by0; }
+    int64_t bins_x() const { return grid_.nbx; }
+    int64_t bins_y() const { return grid_.nby; }
     const std::vector<uint32_t>& bin_start() const { return start_; }
     const std::vector<BinnedGrain>& binned_grains() const { return binned_; }
 
 private:
-    double k_;
-    int64_t bx0_ = 0, by0_ = 0;
-    int64_t nbx_ = 0, nby_ = 0;
+    // The cells whose grains can reach [x0, x1] x [y0, y1].
+    struct CellBox {
+        int64_t x0, y0, x1, y1;
+    };
+    static CellBox cells_reaching(const CellIntensity& intensity, const GrainRadiusLaw& radius, double x0, double y0,
+                                  double x1, double y1);
+
+    BinGrid grid_;
     std::vector<Grain> grains_;
     std::vector<uint32_t> start_;
     std::vector<BinnedGrain> binned_;
     std::vector<uint32_t> fill_;
-    struct BinRange {
-        int64_t lx, hx, ly, hy;
-    };
     std::vector<BinRange> ranges_;
 };
 

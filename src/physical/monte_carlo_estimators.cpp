@@ -82,14 +82,13 @@ void estimate_pixel_wise(const GrainField& field, const TileRect& rect, const Sa
         }
 }
 
-void estimate_pixel_wise_by_masks(const GrainField& field, const TileRect& rect, const SampleSchedule& s,
+void estimate_pixel_wise_by_masks(const BinGrid& grid, const TileRect& rect, const SampleSchedule& s,
                                   TileEstimate& out) {
     const SamplePoints& pts = *s.points;
     const SampleClasses& cls = *s.classes;
     const int count = pts.count();
     start_estimate(rect, count, out);
-    bin_coverage_masks(field, cls, s.reference_kernels, out.masks);
-    const int64_t kc = pts.cells_per_pixel(), nbx = field.bins_x(), words = cls.words;
+    const int64_t kc = pts.cells_per_pixel(), nbx = grid.nbx, words = cls.words;
     // Sample i of the pixel whose own bin is b reads word b * words + word_at[i], bit bit_at[i].
     std::vector<int64_t> word_at(static_cast<std::size_t>(count));
     for (int i = 0; i < count; i++)
@@ -99,9 +98,9 @@ void estimate_pixel_wise_by_masks(const GrainField& field, const TileRect& rect,
     const uint64_t* masks = out.masks.data();
     const int w = rect.x1 - rect.x0;
     for (int y = rect.y0; y < rect.y1; y++) {
-        const int64_t row = (kc * y - field.first_bin_y()) * nbx;
+        const int64_t row = (kc * y - grid.by0) * nbx;
         for (int x = rect.x0; x < rect.x1; x++) {
-            const uint64_t* base = masks + (row + kc * x - field.first_bin_x()) * words;
+            const uint64_t* base = masks + (row + kc * x - grid.bx0) * words;
             int hits = 0;
             for (int i = 0; i < count; i++) hits += int((base[word_at[std::size_t(i)]] >> bit_at[i]) & 1u);
             out.value[std::size_t(y - rect.y0) * w + (x - rect.x0)] = float(double(hits) / count);

@@ -35,9 +35,10 @@ struct TileEstimate {
 void estimate_pixel_wise(const GrainField& field, const TileRect& rect, const SampleSchedule& s, TileEstimate& out);
 
 // Unit zoom, fixed N: per bin, the mask of the samples its grains cover (coverage_masks.hpp),
-// then per pixel one bit per sample. Needs s.classes, and the field generated over the tile's
-// sample_reach() so that its bins are the bins the samples fall in.
-void estimate_pixel_wise_by_masks(const GrainField& field, const TileRect& rect, const SampleSchedule& s,
+// then per pixel one bit per sample. Needs s.classes, and out.masks painted by
+// paint_tile_masks() over the tile's sample_reach(), whose bin grid is `grid`: its bins are
+// the bins the samples fall in.
+void estimate_pixel_wise_by_masks(const BinGrid& grid, const TileRect& rect, const SampleSchedule& s,
                                   TileEstimate& out);
 
 // Per sample, every grain marks the pixels whose shifted centres it covers.

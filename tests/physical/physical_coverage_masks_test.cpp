@@ -1,15 +1,18 @@
-// The unit-zoom mask estimator's stages: the coverage-mask kernel on every dispatch target
+// The unit-zoom mask estimator's stages: the mask-painting kernel on every dispatch target
 // against its scalar reference, on random grains and points including points exactly on a
-// grain's edge; the grouping of samples into classes; and a whole render with the vector
-// kernels equal to one with the scalar kernels.
+// grain's edge; the painted masks against the bin lists; the grouping of samples into
+// classes; and a whole render with the vector kernels equal to one with the scalar kernels.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 
 #include "core/simd_targets.hpp"
 #include "physical/boolean_model.hpp"
 #include "physical/coverage_masks.hpp"
+#include "physical/grain_field.hpp"
 #include "physical/monte_carlo_offsets.hpp"
 #include "forced_simd_target.hpp"
 
@@ -20,33 +23,101 @@ namespace {
 
 class CoverageMaskEquivalence : public test_support::ForcedSimdTarget<0xC0FE> {};
 
+// Random classes of points in bins 1/k wide and random grains around a small grid, at k = 1
+// so that a grain's squared radius can be made exactly the float distance to a point (the
+// <= of the test then decides), and at k = 3 and 10 (a class per bin residue).
 TEST_P(CoverageMaskEquivalence, OptimizedEqualsReference) {
     std::uniform_real_distribution<float> unit(0.f, 1.f);
-    for (int iter = 0; iter < 3000; iter++) {
-        const uint32_t m = uint32_t(uniform(1, 200));
-        const int words = int((m + 63) / 64) + uniform(0, 1);
-        const uint32_t padded = (m + kClassPointPad - 1) / kClassPointPad * kClassPointPad;
-        std::vector<float> lx(padded, std::numeric_limits<float>::quiet_NaN()), ly(lx);
-        for (uint32_t j = 0; j < m; j++) lx[j] = unit(rng), ly[j] = unit(rng);
-        std::vector<BinnedGrain> grains(std::size_t(uniform(0, 12)));
+    for (int iter = 0; iter < 600; iter++) {
+        const int k = std::vector<int>{1, 3, 10}[std::size_t(uniform(0, 2))];
+        SampleClasses c;
+        c.cells_per_pixel = k;
+        const std::size_t classes = std::size_t(k) * k;
+        c.begin.resize(classes);
+        c.size.resize(classes);
+        uint32_t at = 0, largest = 0;
+        for (std::size_t cls = 0; cls < classes; cls++) {
+            c.size[cls] = uint32_t(uniform(0, 4) == 0 ? 0 : uniform(1, k == 1 ? 150 : 40));
+            c.begin[cls] = at;
+            largest = std::max(largest, c.size[cls]);
+            at += (c.size[cls] + kClassPointPad - 1) / kClassPointPad * kClassPointPad;
+        }
+        c.words = std::max(1, int((largest + 63) / 64)) + uniform(0, 1);
+        c.lx.assign(at, std::numeric_limits<float>::quiet_NaN());
+        c.ly = c.lx;
+        for (std::size_t cls = 0; cls < classes; cls++)
+            for (uint32_t j = 0; j < c.size[cls]; j++) c.lx[c.begin[cls] + j] = unit(rng), c.ly[c.begin[cls] + j] = unit(rng);
+        const double x0 = uniform(-20, 20) / double(k), y0 = uniform(-20, 20) / double(k);
+        const BinGrid grid = bin_grid_over(x0, y0, x0 + uniform(0, 6) / double(k) + 0.5 / k,
+                                           y0 + uniform(0, 6) / double(k) + 0.5 / k, k);
+        const MaskLayout layout = mask_layout(grid, c);
+        std::vector<Grain> grains(std::size_t(uniform(0, 40)));
         for (auto& g : grains) {
-            g = {unit(rng) * 1.6f - 0.3f, unit(rng) * 1.6f - 0.3f, unit(rng) * unit(rng) * 0.5f};
-            // Some grains pass exactly through a sample point: the <= of the test decides.
-            if (m > 0 && uniform(0, 3) == 0) {
-                const uint32_t j = uint32_t(uniform(0, int(m) - 1));
-                const float dx = lx[j] - g.x, dy = ly[j] - g.y;
-                g.r2 = dx * dx + dy * dy;
+            const double r = unit(rng) * 1.2 / k;
+            g = {x0 + (unit(rng) * (grid.nbx + 2) - 1) / k, y0 + (unit(rng) * (grid.nby + 2) - 1) / k, r * r};
+            if (k == 1 && uniform(0, 2) == 0) {
+                // Through a point of the bin holding its centre, exactly on the edge.
+                const int64_t bx = floor_to_int(g.x), by = floor_to_int(g.y);
+                if (bx < grid.bx0 || by < grid.by0 || bx >= grid.bx0 + grid.nbx || by >= grid.by0 + grid.nby) continue;
+                const uint32_t cls = layout.row_class[std::size_t(by - grid.by0)] + layout.col_class[std::size_t(bx - grid.bx0)];
+                if (c.size[cls] == 0) continue;
+                const uint32_t j = c.begin[cls] + uint32_t(uniform(0, int(c.size[cls]) - 1));
+                const float dx = c.lx[j] - bin_local(g.x, bx), dy = c.ly[j] - bin_local(g.y, by);
+                g.r2 = double(dx * dx + dy * dy);
             }
         }
-        std::vector<uint64_t> want(std::size_t(words), ~0ull), got(want);
-        coverage_mask_reference(grains.data(), uint32_t(grains.size()), lx.data(), ly.data(), m, want.data(), words);
-        coverage_mask_optimized(grains.data(), uint32_t(grains.size()), lx.data(), ly.data(), m, got.data(), words);
-        ASSERT_EQ(got, want) << "iteration " << iter << " m " << m << " grains " << grains.size();
+        const std::size_t words = std::size_t(grid.nbx * grid.nby) * std::size_t(c.words);
+        std::vector<uint64_t> want(words, 0), got(words, 0);
+        paint_coverage_masks_reference(grains.data(), grains.size(), layout, c, want.data());
+        paint_coverage_masks_optimized(grains.data(), grains.size(), layout, c, got.data());
+        ASSERT_EQ(got, want) << "iteration " << iter << " k " << k << " grains " << grains.size();
     }
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, CoverageMaskEquivalence, ::testing::ValuesIn(simd::available_targets()),
                          [](const ::testing::TestParamInfo<simd::Target>& i) { return i.param.name; });
+
+// The masks painted row of cells by row of cells against the bin lists the pixel-wise
+// estimator searches: bit j of a bin is set exactly when its class point j is covered by a
+// grain of the bin's list.
+TEST(CoverageMasks, PaintedMasksEqualTheBinListsLookUp) {
+    FloatPlane u(24, 20);
+    for (int y = 0; y < u.height; y++)
+        for (int x = 0; x < u.width; x++) u.at(x, y) = float((x * 5 + y * 3) % 17) / 16.f;
+    for (const double radius : {0.05, 0.12, 0.4}) {
+        const GrainRadiusLaw law(radius, radius * 0.5);
+        const int k = int(std::lround(1 / (2 * radius)));
+        BooleanModelParams p;
+        const auto xi = monte_carlo_offsets(p, 5, 300);
+        const SamplePoints pts(xi, 300, 1.0, k);
+        const SampleClasses c = group_samples_by_class(pts);
+        const CellIntensity intensity(u, law, 1e-3, std::max(1, (k + 1) / 3), -4, -4, 28, 24);
+        GrainField field;
+        field.generate(intensity, law, k, 77, 2.3, 1.7, 15.2, 12.9, true);
+        for (const bool reference : {true, false}) {
+            std::vector<uint64_t> masks;
+            GrainField painter;
+            EXPECT_EQ(paint_tile_masks(painter, intensity, law, 77, 2.3, 1.7, 15.2, 12.9, c, reference, masks),
+                      field.grains().size());
+            const MaskLayout layout = mask_layout(field.grid(), c);
+            ASSERT_EQ(masks.size(), std::size_t(field.bins_x() * field.bins_y()) * std::size_t(c.words));
+            for (int64_t by = 0; by < field.bins_y(); by++)
+                for (int64_t bx = 0; bx < field.bins_x(); bx++) {
+                    const uint32_t cls = layout.row_class[std::size_t(by)] + layout.col_class[std::size_t(bx)];
+                    const uint64_t* mask = masks.data() + std::size_t(by * field.bins_x() + bx) * std::size_t(c.words);
+                    for (int w = 0; w < c.words; w++)
+                        for (int bit = 0; bit < 64; bit++) {
+                            const uint32_t j = uint32_t(w * 64 + bit);
+                            const bool want =
+                                j < c.size[cls] && field.covered_in_bin(field.first_bin_x() + bx, field.first_bin_y() + by,
+                                                                        c.lx[c.begin[cls] + j], c.ly[c.begin[cls] + j]);
+                            ASSERT_EQ(bool((mask[w] >> bit) & 1u), want)
+                                << "radius " << radius << " reference " << reference << " bin " << bx << "," << by;
+                        }
+                }
+        }
+    }
+}
 
 TEST(SampleClasses, EverySampleHasOnePlaceInItsClass) {
     BooleanModelParams p;

@@ -1,4 +1,4 @@
-// Highway twin of coverage_mask_reference (coverage_masks.hpp), compiled once per target.
+// Highway twin of paint_coverage_masks_reference (coverage_masks.hpp), compiled once per target.
 // Built with -ffp-contract=off (CMakeLists.txt): dx*dx + dy*dy must round exactly as the
 // scalar inside_grain() does, never as one fused multiply-add.
 #undef HWY_TARGET_INCLUDE
@@ -6,7 +6,7 @@
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
-#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "physical/coverage_masks.hpp"
@@ -16,32 +16,50 @@ namespace filmgrain::physical {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// Lanes hold samples, the grains are broadcast: a class has tens of samples and a bin a few
-// grains, and a group of samples stops as soon as every lane is covered.
-void CoverageMask(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
-                  uint64_t* mask, int words) {
+// Lanes hold the samples of the bin's class, the grain is broadcast: a class has a few to
+// tens of samples, and a grain meets a few bins. The walk over grains and bins is the
+// reference's, line for line.
+void PaintCoverageMasks(const Grain* grains, std::size_t n, const MaskLayout& layout, const SampleClasses& classes,
+                        uint64_t* masks) {
     const hn::CappedTag<float, kClassPointPad> d;  // never wider than the padding
     const uint32_t lanes = uint32_t(hn::Lanes(d));
-    std::fill(mask, mask + words, 0);
-    // Bit j of the mask is bit j % 8 of byte j / 8 of the words (little-endian, as on every
-    // target Highway dispatches to here).
-    // Lanes past m read the padding, NaN, which no grain covers: their bits stay zero.
-    uint8_t* bytes = reinterpret_cast<uint8_t*>(mask);
-    for (uint32_t j = 0; j < m; j += lanes) {
-        const auto px = hn::LoadU(d, lx + j), py = hn::LoadU(d, ly + j);
-        auto hit = hn::Lt(px, px);  // all false (the padding is NaN)
-        for (uint32_t i = 0; i < n; i++) {
-            const auto dx = hn::Sub(px, hn::Set(d, grains[i].x));
-            const auto dy = hn::Sub(py, hn::Set(d, grains[i].y));
-            hit = hn::Or(hit, hn::Le(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Set(d, grains[i].r2)));
-            if (hn::AllTrue(d, hit)) break;
-        }
-        uint8_t bits[8] = {};
-        hn::StoreMaskBits(d, hit, bits);
-        if (lanes >= 8) {
-            std::memcpy(bytes + j / 8, bits, lanes / 8);
-        } else {
-            bytes[j / 8] = uint8_t(bytes[j / 8] | (bits[0] << (j % 8)));
+    const BinGrid grid = layout.grid;
+    const std::size_t words = std::size_t(layout.words);
+    // Local copies: the mask stores could alias the vectors' own fields otherwise, and the
+    // compiler would reload them for every bin.
+    const uint32_t* const row_class = layout.row_class.data();
+    const uint32_t* const col_class = layout.col_class.data();
+    const uint32_t* const begin = classes.begin.data();
+    const uint32_t* const size = classes.size.data();
+    const float* const class_lx = classes.lx.data();
+    const float* const class_ly = classes.ly.data();
+    for (std::size_t i = 0; i < n; i++) {
+        const Grain g = grains[i];
+        const BinRange b = bins_met_by(g, std::sqrt(g.r2), grid);
+        const auto r2 = hn::Set(d, r2_in_bins(g.r2, grid.k));
+        for (int64_t by = b.ly; by <= b.hy; by++) {
+            const auto gy = hn::Set(d, bin_local(g.y * grid.k, by + grid.by0));
+            uint64_t* const mask_row = masks + std::size_t(by * grid.nbx) * words;
+            for (int64_t bx = b.lx; bx <= b.hx; bx++) {
+                const auto gx = hn::Set(d, bin_local(g.x * grid.k, bx + grid.bx0));
+                const uint32_t cls = row_class[by] + col_class[bx];
+                const float* const lx = class_lx + begin[cls];
+                const float* const ly = class_ly + begin[cls];
+                uint64_t* const mask = mask_row + std::size_t(bx) * words;
+                // Lanes past the class size read the padding, NaN, which no grain covers. A
+                // vector's bits never straddle two words: lanes divide 64 and j is a multiple
+                // of the lane count.
+                for (uint32_t j = 0, m = size[cls]; j < m; j += lanes) {
+                    const auto dx = hn::Sub(hn::LoadU(d, lx + j), gx);
+                    const auto dy = hn::Sub(hn::LoadU(d, ly + j), gy);
+                    const auto hit = hn::Le(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), r2);
+                    uint8_t bytes[8] = {};
+                    hn::StoreMaskBits(d, hit, bytes);
+                    uint64_t bits;
+                    std::memcpy(&bits, bytes, sizeof bits);  // little-endian, as on every target here
+                    mask[j / 64] |= bits << (j % 64);
+                }
+            }
         }
     }
 }
@@ -53,11 +71,11 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace filmgrain::physical {
 
-HWY_EXPORT(CoverageMask);
+HWY_EXPORT(PaintCoverageMasks);
 
-void coverage_mask_optimized(const BinnedGrain* grains, uint32_t n, const float* lx, const float* ly, uint32_t m,
-                             uint64_t* mask, int words) {
-    HWY_DYNAMIC_DISPATCH(CoverageMask)(grains, n, lx, ly, m, mask, words);
+void paint_coverage_masks_optimized(const Grain* grains, std::size_t n, const MaskLayout& layout,
+                                    const SampleClasses& classes, uint64_t* masks) {
+    HWY_DYNAMIC_DISPATCH(PaintCoverageMasks)(grains, n, layout, classes, masks);
 }
 
 }  // namespace filmgrain::physical
