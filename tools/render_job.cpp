@@ -85,8 +85,12 @@ void RenderTotals::add(const physical::RenderReport& r, double px) {
 void add_render_options(CLI::App* sub, RenderOptions& o) {
     sub->add_option("input", o.input, "input picture (PNG, TIFF, EXR, DPX, JPEG, ...) or video (.y4m, .yuv, -)")->required();
     sub->add_option("-o,--output", o.output, "output (same kind as the input)")->required();
-    sub->add_option("--radius", o.radius, "mean grain radius, input pixels")->capture_default_str();
-    sub->add_option("--radius-sigma", o.radius_sigma, "standard deviation of the (log-normal) radius; 0 = constant")
+    sub->add_option("--radius", o.radius,
+                    "mean grain radius, input pixels (chickendream's median `rad` with log-std `dev`: rad*exp(dev^2/2))")
+        ->capture_default_str();
+    sub->add_option("--radius-sigma", o.radius_sigma,
+                    "standard deviation of the (log-normal) radius; 0 = constant (from chickendream's `dev`: "
+                    "radius*sqrt(exp(dev^2)-1))")
         ->capture_default_str();
     sub->add_option("--filter-sigma", o.filter_sigma, "Gaussian filter, output pixels")->capture_default_str();
     sub->add_option("--zoom", o.zoom, "output pixels per input pixel")->capture_default_str();
