@@ -20,9 +20,11 @@ SynthesisSetup prepare_setup(const FgcParams& p, ChromaFormat format, int bit_de
     if (options.pattern_interpolation) add_interpolation_ramps(r, setup.luts);
     setup.pattern_interpolation = options.pattern_interpolation;
     setup.scale_shift = scale_shift(r, bit_depth);
-    for (size_t c = 0; c < 3; ++c)
+    for (size_t c = 0; c < 3; ++c) {
+        setup.runs[c] = intensity_runs(setup.luts[c]);
         setup.has_grain[c] = std::any_of(setup.luts[c].scale.begin(), setup.luts[c].scale.end(),
                                          [](uint8_t s) { return s != 0; });
+    }
     return setup;
 }
 

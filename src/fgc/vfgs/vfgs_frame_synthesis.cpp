@@ -20,7 +20,6 @@ struct FrameJob {
     const FrameView& src;
     const FrameView& dst;
     const SynthesisSetup& setup;
-    std::array<IntensityRuns, 3> runs;
     std::array<bool, 3> vector_kernels{};
     int blocks = 0;  // per stripe
 };
@@ -67,7 +66,7 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
         job.pool = base + (j / suby) * kTemplatePitch;
         job.pool_up = base + ((16 + j) / suby) * kTemplatePitch;  // the block above continues below its 16 rows
         job.luts = &f.setup.luts[static_cast<size_t>(c)];
-        job.runs = &f.runs[static_cast<size_t>(c)];
+        job.runs = &f.setup.runs[static_cast<size_t>(c)];
         job.blocks = blocks;
         job.block_count = pw / bw;  // the blocks inside the row, read in place
         job.block_width = bw;
@@ -155,16 +154,27 @@ FrameSynthesis::~FrameSynthesis() = default;
 
 int FrameSynthesis::threads() const { return pool_->size(); }
 
+void FrameSynthesis::plan_stripes(int luma_width, int luma_height, LfsrCursor& cursor) {
+    const int nb = blocks_per_stripe(luma_width);
+    if (stripe_step_blocks_ != nb) {
+        stripe_step_ = LfsrJump(static_cast<uint64_t>(nb));
+        stripe_step_blocks_ = nb;
+    }
+    plan_stripe_states(cursor, stripes_per_frame(luma_height), stripe_step_, stripe_starts_);
+}
+
+void FrameSynthesis::skip(int luma_width, int luma_height, LfsrCursor& cursor) {
+    plan_stripes(luma_width, luma_height, cursor);
+}
+
 void FrameSynthesis::apply(const FrameView& src, const FrameView& dst, const SynthesisSetup& setup, LfsrCursor& cursor) {
     const int nb = blocks_per_stripe(src.width);
     const int ns = stripes_per_frame(src.height);
-    FrameJob f{src, dst, setup, {}, {}, nb};
-    for (size_t c = 0; c < 3; ++c) {
-        f.runs[c] = intensity_runs(setup.luts[c]);
+    FrameJob f{src, dst, setup, {}, nb};
+    for (size_t c = 0; c < 3; ++c)
         f.vector_kernels[c] = kernels_ == Kernels::kOptimized && !setup.pattern_interpolation &&
-                              f.runs[c].count <= kMaxVectorRuns;
-    }
-    plan_stripe_states(cursor, ns, LfsrJump(static_cast<uint64_t>(nb)), stripe_starts_);
+                              setup.runs[c].count <= kMaxVectorRuns;
+    plan_stripes(src.width, src.height, cursor);
 
     // Every worker's buffers are sized here, on the calling thread: a worker that got no
     // stripe in the first frames cannot allocate later.

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "fgc/vfgs/vfgs_lfsr_jump.hpp"
 #include "fgc/vfgs/vfgs_picture_synthesis.hpp"
 #include "fgc/vfgs/vfgs_row_kernels.hpp"
 
@@ -37,6 +38,8 @@ public:
     // As add_grain_frame(): grain on src into dst (which may alias src), the cursor moved
     // past the frame.
     void apply(const FrameView& src, const FrameView& dst, const SynthesisSetup& setup, LfsrCursor& cursor);
+    // The cursor moved past a frame of this luma size as apply() moves it, without synthesis.
+    void skip(int luma_width, int luma_height, LfsrCursor& cursor);
 
     // One worker's buffers, sized on the calling thread for the frame and reused.
     struct Scratch {
@@ -47,10 +50,16 @@ public:
     };
 
 private:
+    // Every stripe's starting state into stripe_starts_, the cursor past the frame.
+    void plan_stripes(int luma_width, int luma_height, LfsrCursor& cursor);
+
     std::unique_ptr<ThreadPool> pool_;
     Kernels kernels_;
     std::vector<Scratch> scratch_;
     std::vector<uint32_t> stripe_starts_;
+    // The jump of one stripe's blocks, made when the picture width changes, not per frame.
+    int stripe_step_blocks_ = -1;
+    LfsrJump stripe_step_{0};
 };
 
 }  // namespace filmgrain::vfgs

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fgc/vfgs/vfgs_intensity_runs.hpp"
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_templates.hpp"
 #include "filmgrain/frame.hpp"
@@ -53,6 +54,9 @@ inline int to_8bit(int v10) { return (v10 + 2) >> 2; }
 struct SynthesisSetup {
     const TemplateBank* bank = nullptr;
     std::array<ComponentLuts, 3> luts{};
+    // luts as runs for the vector kernels (FrameSynthesis), made with them: they change only
+    // with the parameter set, not per frame
+    std::array<IntensityRuns, 3> runs{};
     std::array<bool, 3> has_grain{};  // false: the plane is only clipped
     int scale_shift = 0;
     bool pattern_interpolation = false;

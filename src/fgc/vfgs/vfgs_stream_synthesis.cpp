@@ -3,7 +3,6 @@
 // the picture format change.
 #include <algorithm>
 #include <string>
-#include <vector>
 
 #include "core/plane_layout.hpp"
 #include "core/thread_pool.hpp"
@@ -12,7 +11,6 @@
 #include "fgc/vfgs/vfgs_parameters.hpp"
 #include "fgc/vfgs/vfgs_picture_synthesis.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
-#include "fgc/vfgs/vfgs_stripe_states.hpp"
 #include "fgc/vfgs/vfgs_templates.hpp"
 #include "filmgrain/error.hpp"
 #include "filmgrain/vfgs.hpp"
@@ -162,10 +160,7 @@ void Synthesizer::skip(int luma_width, int luma_height) {
     if (!m.params) bad_arg("skip() called before set_params()");
     check_picture_size(luma_width, luma_height);
     if (m.params->film_grain_characteristics_cancel_flag) return;
-    // The stripe starts apply() would compute; only where they leave the cursor is kept.
-    std::vector<uint32_t> starts;
-    plan_stripe_states(m.cursor, stripes_per_frame(luma_height), LfsrJump(static_cast<uint64_t>(blocks_per_stripe(luma_width))),
-                       starts);
+    m.frames.skip(luma_width, luma_height, m.cursor);
 }
 
 }  // namespace filmgrain::vfgs
