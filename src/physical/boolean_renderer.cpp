@@ -131,13 +131,7 @@ RenderReport render_boolean_model(const FloatPlane& u, const BooleanModelParams&
     const bool unit_zoom = p.zoom == 1.0;
     if (!adaptive && !unit_zoom) sort_offsets_by_bin(xi, k);
     const SamplePoints points(xi, n_offsets, p.zoom, k);
-    double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
-    for (int i = 0; i < n_offsets; i++) {
-        xmin = std::min(xmin, xi[2 * i]);
-        xmax = std::max(xmax, xi[2 * i]);
-        ymin = std::min(ymin, xi[2 * i + 1]);
-        ymax = std::max(ymax, xi[2 * i + 1]);
-    }
+    const auto [xmin, xmax, ymin, ymax] = points.offset_extent();
     const double margin = std::max({-xmin, xmax, -ymin, ymax}) + law.max_radius();
 
     // Input pixels the region can see.

@@ -17,30 +17,16 @@ void start_estimate(const TileRect& rect, int count, TileEstimate& out) {
 }  // namespace
 
 InputRect sample_reach(const SamplePoints& points, const TileRect& rect, double zoom) {
-    const int n = points.count();
     if (points.unit_zoom()) {
-        const double k = points.cells_per_pixel();
-        int64_t sx0 = 0, sx1 = 0, sy0 = 0, sy1 = 0;
-        for (int i = 0; i < n; i++) {
-            const int64_t bx = points.steps_x()[std::size_t(i)].bin, by = points.steps_y()[std::size_t(i)].bin;
-            sx0 = i ? std::min(sx0, bx) : bx;
-            sx1 = i ? std::max(sx1, bx) : bx;
-            sy0 = i ? std::min(sy0, by) : by;
-            sy1 = i ? std::max(sy1, by) : by;
-        }
+        const StepExtent& s = points.step_extent();
         const int64_t kc = points.cells_per_pixel();
-        return {double(kc * rect.x0 + sx0) / k, double(kc * rect.y0 + sy0) / k,
-                double(kc * (rect.x1 - 1) + sx1 + 1) / k, double(kc * (rect.y1 - 1) + sy1 + 1) / k};
+        const double k = double(kc);
+        return {double(kc * rect.x0 + s.x0) / k, double(kc * rect.y0 + s.y0) / k,
+                double(kc * (rect.x1 - 1) + s.x1 + 1) / k, double(kc * (rect.y1 - 1) + s.y1 + 1) / k};
     }
-    double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
-    for (int i = 0; i < n; i++) {
-        xmin = std::min(xmin, points.offset_x(i));
-        xmax = std::max(xmax, points.offset_x(i));
-        ymin = std::min(ymin, points.offset_y(i));
-        ymax = std::max(ymax, points.offset_y(i));
-    }
-    return {output_to_input(rect.x0, zoom) + xmin, output_to_input(rect.y0, zoom) + ymin,
-            output_to_input(rect.x1 - 1, zoom) + xmax, output_to_input(rect.y1 - 1, zoom) + ymax};
+    const OffsetExtent& e = points.offset_extent();
+    return {output_to_input(rect.x0, zoom) + e.x0, output_to_input(rect.y0, zoom) + e.y0,
+            output_to_input(rect.x1 - 1, zoom) + e.x1, output_to_input(rect.y1 - 1, zoom) + e.y1};
 }
 
 void estimate_pixel_wise(const GrainField& field, const TileRect& rect, const SampleSchedule& s, TileEstimate& out) {

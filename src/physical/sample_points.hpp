@@ -8,6 +8,7 @@
 // cells_per_pixel * (1/2 + xi_k), which is what lets the unit-zoom estimator precompute,
 // per bin, which samples its grains cover (coverage_masks.hpp).
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -24,17 +25,38 @@ struct BinPoint {
     float local;
 };
 
+// The smallest and largest offsets of the samples, per axis, the zero offset included
+// (input-pixel units): how far from a pixel centre its samples reach.
+struct OffsetExtent {
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+};
+// Unit zoom: the smallest and largest bin steps of the samples, per axis.
+struct StepExtent {
+    int64_t x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+};
+
 class SamplePoints {
 public:
     // offsets: xi_k as x, y pairs (input-pixel units); count of them used.
     SamplePoints(const std::vector<double>& offsets, int count, double zoom, int cells_per_pixel)
         : xi_(offsets.data()), count_(count), zoom_(zoom), k_(cells_per_pixel), unit_zoom_(zoom == 1.0) {
+        for (int i = 0; i < count; i++) {
+            offset_extent_.x0 = std::min(offset_extent_.x0, xi_[2 * i]);
+            offset_extent_.x1 = std::max(offset_extent_.x1, xi_[2 * i]);
+            offset_extent_.y0 = std::min(offset_extent_.y0, xi_[2 * i + 1]);
+            offset_extent_.y1 = std::max(offset_extent_.y1, xi_[2 * i + 1]);
+        }
         if (!unit_zoom_) return;
         step_x_.resize(std::size_t(count));
         step_y_.resize(std::size_t(count));
         for (int i = 0; i < count; i++) {
-            step_x_[std::size_t(i)] = split(k_ * (0.5 + xi_[2 * i]));
-            step_y_[std::size_t(i)] = split(k_ * (0.5 + xi_[2 * i + 1]));
+            const BinPoint sx = split(k_ * (0.5 + xi_[2 * i])), sy = split(k_ * (0.5 + xi_[2 * i + 1]));
+            step_x_[std::size_t(i)] = sx;
+            step_y_[std::size_t(i)] = sy;
+            step_extent_.x0 = i ? std::min(step_extent_.x0, sx.bin) : sx.bin;
+            step_extent_.x1 = i ? std::max(step_extent_.x1, sx.bin) : sx.bin;
+            step_extent_.y0 = i ? std::min(step_extent_.y0, sy.bin) : sy.bin;
+            step_extent_.y1 = i ? std::max(step_extent_.y1, sy.bin) : sy.bin;
         }
     }
 
@@ -44,6 +66,8 @@ public:
     double zoom() const { return zoom_; }
     double offset_x(int i) const { return xi_[2 * i]; }
     double offset_y(int i) const { return xi_[2 * i + 1]; }
+    const OffsetExtent& offset_extent() const { return offset_extent_; }
+    const StepExtent& step_extent() const { return step_extent_; }  // unit zoom only
 
     // Sample i of output column j / row j.
     BinPoint x(int j, int i) const { return unit_zoom_ ? shifted(j, step_x_[std::size_t(i)]) : scaled(j, xi_[2 * i]); }
@@ -69,6 +93,8 @@ private:
     int k_;
     bool unit_zoom_;
     std::vector<BinPoint> step_x_, step_y_;
+    OffsetExtent offset_extent_;
+    StepExtent step_extent_;
 };
 
 }  // namespace filmgrain::physical
