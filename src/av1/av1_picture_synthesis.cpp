@@ -312,18 +312,17 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                            src.planes[0].row<Pixel>((y0 + i0) << suby_), width_, in_rows, nz, pw,
                                            subx_, chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                            clip_.min_value, clip_.max_chroma);
-                return;
-            }
-            simd::BlockNoiseRow r = nz;
-            for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
-                const int y = y0 + i;
-                const Pixel* luma =
-                    share_co_sited ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
-                const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
-                if constexpr (sizeof(Pixel) > 1)
+            } else {
+                simd::BlockNoiseRow r = nz;
+                for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
+                    const int y = y0 + i;
+                    const Pixel* luma =
+                        share_co_sited ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
+                    const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
                     simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, r, pw, sx,
                                                chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                                clip_.min_value, clip_.max_chroma);
+                }
             }
         });
     // Luma first where that is safe (out of place, or the co-sited rows made before luma is
