@@ -6,6 +6,7 @@
 
 #include "physical/boolean_covariance.hpp"
 #include "physical/monte_carlo_offsets.hpp"
+#include "stats/grain_statistics.hpp"
 #include "tradeoff_methods.hpp"
 
 namespace filmgrain::cli {
@@ -32,25 +33,6 @@ OffsetFigures figures(const physical::BooleanCovariance& cov, const std::vector<
         f.var_hi = std::max(f.var_hi, v);
     }
     return f;
-}
-
-// Correlation of the output at lag l along rows (h) and along columns (v).
-void measured_correlations(const FloatPlane& f, int l, double& h, double& v) {
-    double mean = 0;
-    for (float x : f.v) mean += x;
-    mean /= double(f.v.size());
-    double var = 0, ch = 0, cv = 0;
-    long nh = 0, nv = 0;
-    for (int y = 0; y < f.height; y++)
-        for (int x = 0; x < f.width; x++) {
-            const double a = f.at(x, y) - mean;
-            var += a * a;
-            if (x + l < f.width) ch += a * (f.at(x + l, y) - mean), nh++;
-            if (y + l < f.height) cv += a * (f.at(x, y + l) - mean), nv++;
-        }
-    var /= double(f.v.size());
-    h = ch / double(nh) / var;
-    v = cv / double(nv) / var;
 }
 
 }  // namespace
@@ -98,11 +80,9 @@ std::string boolean_offsets_section(const physical::BooleanModelParams& p, doubl
         FloatPlane out;
         physical::render_boolean_model(u, rp, {}, uint64_t(s), out);
         md << "| " << s;
-        for (int l = 1; l <= kMaxLag; l++) {
-            double h, v;
-            measured_correlations(out, l, h, v);
-            md << " | " << fixed_decimals(h, 3) << " / " << fixed_decimals(v, 3);
-        }
+        const stats::Autocovariance c = stats::autocovariance(out, kMaxLag);
+        for (int l = 1; l <= kMaxLag; l++)
+            md << " | " << fixed_decimals(c.at(l, 0) / c.at(0, 0), 3) << " / " << fixed_decimals(c.at(0, l) / c.at(0, 0), 3);
         md << " |\n";
     }
     return md.str();
