@@ -23,7 +23,7 @@ struct AnalyzeOptions {
     int frame_step = 0;
     int max_frames = 32;
     int temporal_radius = 2;
-    double accuracy = 0.05;
+    double accuracy = 0.0;  // 0: the model's own default
     double max_error = 0.25;  // the accuracy check: a component missing its levels by more is refused
     int max_lag = 3;
     bool spatial = false;

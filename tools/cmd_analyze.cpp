@@ -27,11 +27,9 @@ namespace filmgrain::cli {
 #ifdef FILMGRAIN_HAVE_ANALYSIS
 namespace {
 
-
-
-std::string percent(double x) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.1f%%", 100 * x);
+std::string percent(double x, int decimals = 1) {
+    char b[40];
+    std::snprintf(b, sizeof b, "%.*f%%", decimals, 100 * x);
     return b;
 }
 
@@ -66,8 +64,9 @@ void check_analyze_options(const AnalyzeOptions& o) {
     parse_fgc_codec(o.sei_codec);
     if (o.max_frames < 1) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--max-frames", o.max_frames, 1, 1 << 30));
     if (o.frame_step < 0) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--frame-step", o.frame_step, 0, 1 << 30));
-    if (!(o.accuracy > 0 && o.accuracy < 1))
-        throw Error(ErrorCode::kInvalidArgument, "--accuracy " + std::to_string(o.accuracy) + " is out of range (allowed 0..1, exclusive)");
+    if (!(o.accuracy >= 0 && o.accuracy < 1))
+        throw Error(ErrorCode::kInvalidArgument, "--accuracy " + std::to_string(o.accuracy) +
+                                                     " is out of range (allowed 0..1, 1 exclusive; 0 = the model's default)");
     if (!(o.max_error > 0 && o.max_error <= 1))
         throw Error(ErrorCode::kInvalidArgument, "--max-error " + std::to_string(o.max_error) + " is out of range (allowed 0..1, 0 exclusive)");
     if (o.max_lag < 0 || o.max_lag > 3) throw Error(ErrorCode::kInvalidArgument, out_of_range_message("--max-lag", o.max_lag, 0, 3));
@@ -249,7 +248,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
             rp.name = names[c];
             rp.present = r.present && e.params.apply_grain;
             rp.curve = r.curve;
-            rp.observations = analyzer->observations()[c].blocks;
+            rp.observations = analyzer->observations()[c].fine_blocks;
             rp.points = r.points;
             rp.power = analysis::mean_power(analyzer->observations()[c], 0, 255);
             std::ostringstream s;
@@ -261,6 +260,10 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
                       << ", accepted " << percent(r.lag_tolerance) << ")";
                 s << "; scaling_shift " << e.params.grain_scaling_minus_8 + 8 << ", ar_coeff_shift "
                   << e.params.ar_coeff_shift_minus_6 + 6;
+                if (c == 0)
+                    s << "; clip_to_restricted_range " << e.params.clip_to_restricted_range << " ("
+                      << (e.clipped_to_legal_range ? "no sample outside the studio range, " : "samples outside the studio range or none on its bounds, ")
+                      << percent(e.on_legal_bound, 3) << " on its bounds)";
             }
             if (!r.note.empty()) s << (r.present ? "; " : "") << r.note;
             if (const std::string a = check_accuracy(c, rp.present, r.error, r.worst_band); !a.empty()) s << "; " << a;
@@ -367,7 +370,7 @@ void add_analyze_options(CLI::App* sub, AnalyzeOptions& o) {
         ->capture_default_str();
     sub->add_flag("--spatial", o.spatial, "denoise each picture on its own (spatial fallback only)");
     sub->add_option("--accuracy", o.accuracy,
-                    "relative error the smallest model must meet (intervals / scaling points)")
+"relative error the smallest model must meet (intervals / scaling points); 0: the model's default, fgc 0.05, av1 0.02")
         ->capture_default_str();
     sub->add_option("--max-lag", o.max_lag, "av1: longest AR lag considered (0..3)")->capture_default_str();
     sub->add_option("--max-error", o.max_error,

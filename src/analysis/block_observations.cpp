@@ -151,6 +151,7 @@ void accumulate_ar(const cv::Mat& normalized, const cv::Mat& luma_normalized, co
 
 void merge_observations(PlaneObservations& total, const PlaneObservations& part) {
     total.blocks.insert(total.blocks.end(), part.blocks.begin(), part.blocks.end());
+    total.fine_blocks.insert(total.fine_blocks.end(), part.fine_blocks.begin(), part.fine_blocks.end());
     for (int b = 0; b < kPowerBins; b++) {
         if (!part.dct_blocks[b]) continue;
         total.dct_power[b] += part.dct_power[b];
@@ -171,6 +172,14 @@ void merge_observations(PlaneObservations& total, const PlaneObservations& part)
     total.ar.n = total.ar_halves[0].n + total.ar_halves[1].n;
     total.flat_samples += part.flat_samples;
     total.total_samples += part.total_samples;
+    total.outside_legal += part.outside_legal;
+    total.on_legal_bound += part.on_legal_bound;
+}
+
+void count_legal_range(const cv::Mat& source, int bit_depth, int legal_min8, int legal_max8, PlaneObservations& out) {
+    const double lo = double(legal_min8 << (bit_depth - 8)), hi = double(legal_max8 << (bit_depth - 8));
+    out.outside_legal += cv::countNonZero(source < lo) + cv::countNonZero(source > hi);
+    out.on_legal_bound += cv::countNonZero(source == lo) + cv::countNonZero(source == hi);
 }
 
 cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
@@ -184,9 +193,9 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
     cv::Mat normalized = cv::Mat::zeros(h, w, CV_32F);
     // Normalized grain everywhere (the chroma planes' luma term needs it beyond flat areas).
     cv::Mat residual;
-    for (int by = 0; by < h; by += kLevelBlock)
-        for (int bx = 0; bx < w; bx += kLevelBlock) {
-            const cv::Rect r(bx, by, std::min(kLevelBlock, w - bx), std::min(kLevelBlock, h - by));
+    for (int by = 0; by < h; by += kArBlock)
+        for (int bx = 0; bx < w; bx += kArBlock) {
+            const cv::Rect r(bx, by, std::min(kArBlock, w - bx), std::min(kArBlock, h - by));
             if (r.width < 4 || r.height < 4) continue;
             const double sigma = detrended_sigma(grain(r), &residual);
             if (sigma > 0) residual.convertTo(normalized(r), CV_32F, 1.0 / sigma);
@@ -194,21 +203,25 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
     cv::Mat usable01, integral;
     cv::threshold(usable, usable01, 0, 1, cv::THRESH_BINARY);
     cv::integral(usable01, integral, CV_32S);
-    std::vector<cv::Rect> level_blocks = place_flat_blocks(integral, w, h, kLevelBlock);
-    std::vector<cv::Rect> ar_blocks;
-    for (const cv::Rect& r : level_blocks) {
+    const auto clipped = [&](const cv::Rect& r) {  // clipped grain: its level is not observable
         double mn, mx;
         cv::minMaxLoc(source(r), &mn, &mx);
-        if (mn <= 0 || mx >= maxv) continue;  // clipped grain: its level is not observable
-        const double sigma = detrended_sigma(grain(r), &residual);
-        out.blocks.push_back({float(cv::mean(denoised(r))[0] * to8), float(sigma)});
-        if (request.ar_equations && sigma > 0) {
+        return mn <= 0 || mx >= maxv;
+    };
+    for (const auto& [size, blocks] : {std::pair{kLevelBlock, &out.blocks}, std::pair{kFineLevelBlock, &out.fine_blocks}})
+        for (const cv::Rect& r : place_flat_blocks(integral, w, h, size))
+            if (!clipped(r)) blocks->push_back({float(cv::mean(denoised(r))[0] * to8), float(detrended_sigma(grain(r), nullptr))});
+    std::vector<cv::Rect> ar_blocks;
+    if (request.ar_equations)
+        for (const cv::Rect& r : place_flat_blocks(integral, w, h, kArBlock)) {
+            if (clipped(r)) continue;
+            const double sigma = detrended_sigma(grain(r), &residual);
+            if (sigma <= 0) continue;
             cv::Mat nb;
             residual.convertTo(nb, CV_32F, 1.0 / sigma);
             nb.copyTo(normalized(r));
             ar_blocks.push_back(r);
         }
-    }
     if (request.ar_equations && !ar_blocks.empty()) {
         // A regular subset keeps the cost bounded on large pictures.
         const std::size_t step = (ar_blocks.size() + request.max_ar_blocks - 1) / request.max_ar_blocks;
@@ -222,9 +235,7 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
     }
     if (request.dct_power) {
         for (const cv::Rect& r : place_flat_blocks(integral, w, h, kDctBlock)) {
-            double mn, mx;
-            cv::minMaxLoc(source(r), &mn, &mx);
-            if (mn <= 0 || mx >= maxv) continue;
+            if (clipped(r)) continue;
             const int bin = std::clamp(int(cv::mean(denoised(r))[0] * to8) / (256 / kPowerBins), 0, kPowerBins - 1);
             out.dct_power[bin] += block_dct_power(grain(r), &out.lags[bin]);
             out.dct_blocks[bin]++;

@@ -10,7 +10,17 @@
 
 namespace filmgrain::analysis {
 
-inline constexpr int kLevelBlock = 32;     // block of the (intensity, level) observations
+inline constexpr int kLevelBlock = 32;     // block of the FGC (intensity, level) observations
+// AV1 levels come from smaller blocks: dark and bright areas of real pictures are often too
+// small for 32x32 (a 40-sample-wide patch yields none), and the AV1 points, which follow the
+// curve closely, missed the extreme bands. FGC keeps 32: its cut-off templates match a
+// coarse grain's spectrum less closely than the AR filter does, and a 16x16 planar detrend
+// removes more of the low frequencies both measure, so its calibration no longer cancels
+// (strong coarse grain came out 8 % high).
+inline constexpr int kFineLevelBlock = 16;
+// The AR fit needs longer rows than the level: its equations lose kMaxArLag samples per side
+// and 16x16 blocks bias the normalized correlations low.
+inline constexpr int kArBlock = 32;
 inline constexpr int kDctBlock = 64;       // the FGC templates' transform size
 inline constexpr int kPowerBins = 16;      // DCT power is kept per 16 8-bit intensity levels
 inline constexpr int kMaxArLag = 3;
@@ -51,7 +61,8 @@ struct LagSums {
 };
 
 struct PlaneObservations {
-    std::vector<BlockSample> blocks;
+    std::vector<BlockSample> blocks;       // kLevelBlock
+    std::vector<BlockSample> fine_blocks;  // kFineLevelBlock
     std::array<cv::Mat, kPowerBins> dct_power;  // CV_64F 64x64 sums of squared coefficients
     std::array<int, kPowerBins> dct_blocks{};
     std::array<LagSums, kPowerBins> lags;       // over the same 64x64 blocks
@@ -61,6 +72,10 @@ struct PlaneObservations {
     std::array<ArEquations, 2> ar_halves;
     long long flat_samples = 0;
     long long total_samples = 0;
+    // Samples outside the legal (studio) range and samples on its bounds: grain that never
+    // leaves 16..235 (chroma 16..240) but piles up on the bounds was clipped there (AV1
+    // clip_to_restricted_range; camera pipelines that clip in R'G'B' do the same to luma).
+    long long outside_legal = 0, on_legal_bound = 0;
     PlaneObservations() {
         for (auto& m : dct_power) m = cv::Mat::zeros(kDctBlock, kDctBlock, CV_64F);
     }
@@ -85,6 +100,9 @@ void merge_observations(PlaneObservations& total, const PlaneObservations& part)
 // Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma
 // grain divided by its block level, resampled to this plane's size.
 // Returns this plane's grain divided by its block level (for the chroma planes' luma term).
+// Counts `source`'s samples outside legal_min8..legal_max8 (8-bit scale) and on those bounds.
+void count_legal_range(const cv::Mat& source, int bit_depth, int legal_min8, int legal_max8, PlaneObservations& out);
+
 cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
                       int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
                       PlaneObservations& out);

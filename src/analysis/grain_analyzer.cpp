@@ -129,6 +129,7 @@ void GrainAnalyzer::analyse(std::size_t wi) {
         cv::Mat luma_term;
         if (p > 0 && req.ar_equations && !luma_normalized.empty())
             cv::resize(luma_normalized, luma_term, s.size(), 0, 0, cv::INTER_AREA);
+        count_legal_range(s, fmt_.bit_depth, 16, p == 0 ? 235 : 240, picture.planes[p]);
         cv::Mat normalized = observe_plane(s, g.denoised, g.grain, usable, fmt_.bit_depth, luma_term, req, picture.planes[p]);
         if (p == 0) luma_normalized = normalized;
         if (keep) {
@@ -159,7 +160,7 @@ FgcEstimate GrainAnalyzer::estimate_fgc() const {
     t.flavour = o_.flavour;
     t.chroma = fmt_.chroma;
     t.bit_depth = fmt_.bit_depth;
-    t.accuracy = o_.accuracy;
+    if (o_.accuracy > 0) t.accuracy = o_.accuracy;
     return analysis::estimate_fgc(obs_, t);
 }
 
@@ -167,7 +168,7 @@ Av1Estimate GrainAnalyzer::estimate_av1() const {
     Av1Target t;
     t.chroma = fmt_.chroma;
     t.bit_depth = fmt_.bit_depth;
-    t.accuracy = o_.accuracy;
+    if (o_.accuracy > 0) t.accuracy = o_.accuracy;
     t.max_lag = o_.max_ar_lag;
     return analysis::estimate_av1(obs_, t);
 }

@@ -25,7 +25,7 @@ struct AnalysisOptions {
     FgcFlavour flavour = FgcFlavour::kRdd5;
     int frame_step = 1;        // analyse pictures 0, step, 2 step, ...
     int temporal_radius = 2;   // neighbours on each side used by the temporal denoiser
-    double accuracy = 0.05;
+    double accuracy = 0.0;     // 0: the model's own default (Av1Target, FgcTarget)
     int max_ar_lag = 3;
     bool spatial_only = false;  // denoise each picture on its own (no temporal neighbours)
     // A range of a clip (distributed analysis): the first picture added has index

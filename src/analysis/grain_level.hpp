@@ -8,10 +8,11 @@
 
 namespace filmgrain::analysis {
 
-double measure_grain_level(const cv::Mat& grain);
+// `block`: the observations' block size (kLevelBlock or kFineLevelBlock).
+double measure_grain_level(const cv::Mat& grain, int block);
 
 // Grain level of plane p of `grainy` - `clean`.
-double measure_grain_level(const FrameView& grainy, const FrameView& clean, int p);
+double measure_grain_level(const FrameView& grainy, const FrameView& clean, int p, int block);
 
 // Lowest grain level (8-bit units) reported as grain; below it the analysis signals none.
 inline constexpr double kMinGrainLevel8 = 0.5;

@@ -8,7 +8,7 @@
 namespace filmgrain::analysis {
 namespace {
 
-constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '2'};
+constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '3'};
 
 class Writer {
 public:
@@ -58,10 +58,12 @@ std::vector<uint8_t> serialize_picture_observations(const PictureObservations& p
     w.put<int64_t>(picture.flat_samples);
     w.put<int64_t>(picture.reliable_samples);
     for (const PlaneObservations& p : picture.planes) {
-        w.put<uint64_t>(p.blocks.size());
-        for (const BlockSample& b : p.blocks) {
-            w.put(b.intensity8);
-            w.put(b.sigma);
+        for (const auto* blocks : {&p.blocks, &p.fine_blocks}) {
+            w.put<uint64_t>(blocks->size());
+            for (const BlockSample& b : *blocks) {
+                w.put(b.intensity8);
+                w.put(b.sigma);
+            }
         }
         for (int b = 0; b < kPowerBins; b++) {
             w.put<int32_t>(p.dct_blocks[b]);
@@ -81,6 +83,8 @@ std::vector<uint8_t> serialize_picture_observations(const PictureObservations& p
         }
         w.put<int64_t>(p.flat_samples);
         w.put<int64_t>(p.total_samples);
+        w.put<int64_t>(p.outside_legal);
+        w.put<int64_t>(p.on_legal_bound);
     }
     return std::move(w.out);
 }
@@ -95,14 +99,16 @@ PictureObservations deserialize_picture_observations(const uint8_t* data, std::s
     pic.flat_samples = r.get<int64_t>("flat_samples");
     pic.reliable_samples = r.get<int64_t>("reliable_samples");
     for (PlaneObservations& p : pic.planes) {
-        const uint64_t n = r.get<uint64_t>("block count");
-        if (n > (r.size - r.pos) / (2 * sizeof(float)))
-            throw Error(ErrorCode::kMalformedPayload, "observation record: block count " + std::to_string(n) +
-                                                          " exceeds the record's " + std::to_string(r.size) + " bytes");
-        p.blocks.resize(n);
-        for (BlockSample& b : p.blocks) {
-            b.intensity8 = r.get<float>("blocks");
-            b.sigma = r.get<float>("blocks");
+        for (auto* blocks : {&p.blocks, &p.fine_blocks}) {
+            const uint64_t n = r.get<uint64_t>("block count");
+            if (n > (r.size - r.pos) / (2 * sizeof(float)))
+                throw Error(ErrorCode::kMalformedPayload, "observation record: block count " + std::to_string(n) +
+                                                              " exceeds the record's " + std::to_string(r.size) + " bytes");
+            blocks->resize(n);
+            for (BlockSample& b : *blocks) {
+                b.intensity8 = r.get<float>("blocks");
+                b.sigma = r.get<float>("blocks");
+            }
         }
         for (int b = 0; b < kPowerBins; b++) {
             p.dct_blocks[b] = r.get<int32_t>("dct_blocks");
@@ -129,6 +135,8 @@ PictureObservations deserialize_picture_observations(const uint8_t* data, std::s
         p.ar.n = p.ar_halves[0].n + p.ar_halves[1].n;
         p.flat_samples = r.get<int64_t>("flat_samples");
         p.total_samples = r.get<int64_t>("total_samples");
+        p.outside_legal = r.get<int64_t>("outside_legal");
+        p.on_legal_bound = r.get<int64_t>("on_legal_bound");
     }
     if (r.pos != r.size)
         throw Error(ErrorCode::kMalformedPayload, "observation record: " + std::to_string(r.size - r.pos) +
