@@ -163,6 +163,13 @@ Estimate analyse(const Clip& c, GrainModel model, bool supply_clean) {
     else return a.estimate_av1();
 }
 
+// Luma grain std where the clean luma is in lo..hi, averaged over the pictures.
+double mean_luma_band_std(const std::vector<FrameBuffer>& grainy, const std::vector<FrameBuffer>& clean, int lo, int hi) {
+    double s = 0;
+    for (std::size_t k = 0; k < grainy.size(); k++) s += analysis_test::grain_std_in_band(grainy[k], clean[k], 0, lo, hi);
+    return s / double(grainy.size());
+}
+
 // Luma grain in the middle intensities (clear of clipping), 8-bit scale.
 const cv::Rect kInnerLuma(16, 16, kWidth - 32, kHeight - 32);
 
@@ -260,11 +267,7 @@ TEST(ForeignGrain, Av1GrainClippedToTheStudioRangeIsClippedAlike) {
         EXPECT_EQ(est.params.clip_to_restricted_range, clip ? 1 : 0);
         if (!clip) continue;
         const auto resynth = resynthesize_av1(est.params, c.clean);
-        double st = 0, se = 0;
-        for (int k = 0; k < kFrames; k++) {
-            st += analysis_test::grain_std_in_band(c.grainy[k], c.clean[k], 0, 16, 31) / kFrames;
-            se += analysis_test::grain_std_in_band(resynth[k], c.clean[k], 0, 16, 31) / kFrames;
-        }
+        const double st = mean_luma_band_std(c.grainy, c.clean, 16, 31), se = mean_luma_band_std(resynth, c.clean, 16, 31);
         std::printf("[ measured ] band 16..31: true %.2f, re-synthesized %.2f\n", st, se);
         EXPECT_NEAR(se / st, 1.0, 0.06);
     }
@@ -298,11 +301,7 @@ TEST(ForeignGrain, Av1ObservesNarrowDarkPatches) {
     std::printf("[ measured ] observed luma %d..%d\n", curve.observed_low, curve.observed_high);
     EXPECT_LE(curve.observed_low, 40);
     const auto resynth = resynthesize_av1(est.params, c.clean);
-    double st = 0, se = 0;
-    for (int k = 0; k < kFrames; k++) {
-        st += analysis_test::grain_std_in_band(c.grainy[k], c.clean[k], 0, 32, 47) / kFrames;
-        se += analysis_test::grain_std_in_band(resynth[k], c.clean[k], 0, 32, 47) / kFrames;
-    }
+    const double st = mean_luma_band_std(c.grainy, c.clean, 32, 47), se = mean_luma_band_std(resynth, c.clean, 32, 47);
     std::printf("[ measured ] the patch (band 32..47): true %.2f, re-synthesized %.2f\n", st, se);
     EXPECT_NEAR(se / st, 1.0, 0.10);
 }
