@@ -18,7 +18,8 @@ namespace filmgrain::fgc {
 // many intervals for tables. Eight rows at a time, the blocks' rows are copied into a band
 // of grain rows (int8 when the tables are: 8-bit grain always fits), which the fused
 // deblocking + blending kernel adds to the picture row by row: the grain of a whole stripe
-// is never written out. Blocks that touch the picture's right or bottom edge take their
+// is never written out. 8-bit pictures with int8 tables skip the band too: their kernel
+// loads each row's grain from the blocks' pointers itself. Blocks that touch the picture's right or bottom edge take their
 // averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
 template <typename Table>
@@ -150,6 +151,16 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
         const Table* const* block_row = blocks + (l0 / kBlock) * columns;
         const std::ptrdiff_t r0 = std::ptrdiff_t(l0 % kBlock) * pitch;
         const int band_rows = std::min(kBandRows, rows - l0);
+        if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1) {
+            // 8-bit grain is deblocked and blended straight from the blocks' table rows
+            for (int l = 0; l < band_rows; l++) {
+                const int y = y_top + l0 + l;
+                const Pixel* ahead = prefetch_next && y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
+                simd::deblock_blend_block_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), block_row,
+                                                    r0 + l * pitch, w, zero_from, kBlock, band - 1, ahead);
+            }
+            continue;
+        }
         auto gather = [&](int n) {
             for (int j = 0; j < columns; j++) {
                 const Table* b = block_row[j] + r0;
@@ -171,14 +182,13 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
             // the same row of the next stripe, whose block sums come next (prefetched as this
             // row is blended)
             const Pixel* ahead = prefetch_next && y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
-            if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1)
-                simd::deblock_blend_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
-            else if constexpr (sizeof(Pixel) == 1)
+            // (8-bit pictures with int8 grain took the branch above)
+            if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 2)
                 simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
-            else if constexpr (sizeof(Table) == 1)
+            else if constexpr (sizeof(Pixel) == 2 && sizeof(Table) == 1)
                 simd::deblock_blend_row_u16_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth,
                                                ahead);
-            else
+            else if constexpr (sizeof(Pixel) == 2)
                 simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth, ahead);
         }
     }

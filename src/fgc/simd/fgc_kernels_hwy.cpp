@@ -355,6 +355,93 @@ void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int 
             std::memcpy(out + r * out_stride + j * block, blocks[j] + offset + r * pitch, std::size_t(block));
 }
 
+// The generic form: the row gathered and zeroed into `row` (one element before column 0,
+// which DeblockBlendRowU8I8 reads and never uses), then blended from there.
+void DeblockBlendBlockRowViaBuffer(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
+                                   std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
+                                   const uint8_t* ahead) {
+    int8_t* g = row + 1;
+    const int end = std::min(grain_end, width + 1);
+    const int count = (end + block - 1) / block;
+    GatherBlockBandsI8(blocks, offset, count, block, 1, 0, g, 0);
+    std::fill(g + end, g + width + 2, int8_t(0));
+    DeblockBlendRowU8I8(src, dst, g, width, block, ahead);
+}
+
+#if HWY_TARGET == HWY_AVX3
+// 8-sample blocks, 64 columns per vector: each 64-bit lane is one block's row, loaded by a
+// gather from the block pointers, so the row never goes through memory. The neighbours of
+// the [1 2 1] filter are the row shifted by one byte, made by 64-bit lane shifts with the
+// byte that crosses a lane (or a vector) brought in by valignq from the adjacent vector.
+// The arithmetic is DeblockBlendRowU8I8's.
+void DeblockBlendBlockRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
+                              std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
+                              const uint8_t* ahead) {
+    if (block != 8) return DeblockBlendBlockRowViaBuffer(src, dst, blocks, offset, width, grain_end, block, row, ahead);
+    // columns 0..len-1 of a vector
+    auto first_n = [](int len) -> __mmask64 {
+        return len <= 0 ? 0 : len >= 64 ? ~__mmask64(0) : (__mmask64(1) << len) - 1;
+    };
+    const int end = std::min(grain_end, width + 1);  // columns that can reach the output
+    const int count = (end + 7) / 8;                 // blocks read
+    const __m512i at = _mm512_set1_epi64(offset);
+    // the grain of columns x0 .. x0 + 63, zero from `end`
+    auto grain_at = [&](int x0) {
+        const int j0 = x0 / 8;
+        if (x0 + 64 <= end) {
+            const int8_t* const* b = blocks + j0;
+            auto pair = [&](int k) {
+                return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(b[k] + offset)),
+                                          _mm_loadl_epi64(reinterpret_cast<const __m128i*>(b[k + 1] + offset)));
+            };
+            const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0)), pair(2), 1);
+            const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4)), pair(6), 1);
+            return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+        }
+        if (x0 >= end) return _mm512_setzero_si512();
+        const __mmask8 valid = __mmask8((1u << (count - j0)) - 1);
+        const __m512i p = _mm512_add_epi64(_mm512_maskz_loadu_epi64(valid, blocks + j0), at);
+        const __m512i g = _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), valid, p, nullptr, 1);
+        return _mm512_maskz_mov_epi8(first_n(end - x0), g);
+    };
+    const __m512i flip = _mm512_set1_epi8(0x7F), bias = _mm512_set1_epi8(char(0x80));
+    // the last and first column of every block; column 0 has no edge on its left
+    constexpr __mmask64 kEdges = 0x8181818181818181ull;
+    __m512i prev = _mm512_setzero_si512(), cur = grain_at(0);
+    for (int x = 0; x < width; x += 64) {
+        const __m512i next = x + 64 < width ? grain_at(x + 64) : _mm512_setzero_si512();
+        const __m512i a = _mm512_or_si512(_mm512_slli_epi64(cur, 8),
+                                          _mm512_srli_epi64(_mm512_alignr_epi64(cur, prev, 7), 56));
+        const __m512i c = _mm512_or_si512(_mm512_srli_epi64(cur, 8),
+                                          _mm512_slli_epi64(_mm512_alignr_epi64(next, cur, 1), 56));
+        __mmask64 filtered = kEdges;
+        if (x == 0) filtered &= ~__mmask64(1);
+        // no edge at `width` for its last column to be left of
+        if (x + 64 >= width) filtered &= first_n(width - 1 - x) | 0x0101010101010101ull;
+        const __m512i nf = _mm512_avg_epu8(_mm512_avg_epu8(_mm512_xor_si512(a, flip), _mm512_xor_si512(c, flip)),
+                                           _mm512_xor_si512(cur, flip));
+        const __m512i g = _mm512_mask_blend_epi8(filtered, cur, _mm512_xor_si512(nf, flip));
+        if (x + 64 <= width) {
+            const __m512i s = _mm512_xor_si512(_mm512_loadu_si512(src + x), bias);
+            _mm512_storeu_si512(dst + x, _mm512_xor_si512(_mm512_adds_epi8(s, g), bias));
+        } else {
+            const __mmask64 inside = first_n(width - x);
+            const __m512i s = _mm512_xor_si512(_mm512_maskz_loadu_epi8(inside, src + x), bias);
+            _mm512_mask_storeu_epi8(dst + x, inside, _mm512_xor_si512(_mm512_adds_epi8(s, g), bias));
+        }
+        PrefetchAhead(ahead, x);
+        prev = cur;
+        cur = next;
+    }
+}
+#else
+void DeblockBlendBlockRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
+                              std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
+                              const uint8_t* ahead) {
+    DeblockBlendBlockRowViaBuffer(src, dst, blocks, offset, width, grain_end, block, row, ahead);
+}
+#endif
+
 void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     const hn::ScalableTag<uint8_t> d8;
     const hn::Repartition<uint64_t, decltype(d8)> d64;
@@ -418,6 +505,7 @@ HWY_EXPORT(DeblockBlendRowU16);
 HWY_EXPORT(DeblockBlendRowU8I8);
 HWY_EXPORT(GatherBlockBandsI8);
 HWY_EXPORT(DeblockBlendRowU16I8);
+HWY_EXPORT(DeblockBlendBlockRowU8I8);
 HWY_EXPORT(BlockSumsU8);
 HWY_EXPORT(BlockSumsU16);
 
@@ -443,6 +531,11 @@ void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* 
 void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, int count, int block, int rows,
                            std::ptrdiff_t pitch, int8_t* out, std::ptrdiff_t out_stride) {
     HWY_DYNAMIC_DISPATCH(GatherBlockBandsI8)(blocks, offset, count, block, rows, pitch, out, out_stride);
+}
+void deblock_blend_block_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
+                                   std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
+                                   const uint8_t* ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendBlockRowU8I8)(src, dst, blocks, offset, width, grain_end, block, row, ahead);
 }
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);
