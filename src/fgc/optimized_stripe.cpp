@@ -153,12 +153,11 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
         const int band_rows = std::min(kBandRows, rows - l0);
         if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1) {
             // 8-bit grain is deblocked and blended straight from the blocks' table rows
-            for (int l = 0; l < band_rows; l++) {
-                const int y = y_top + l0 + l;
-                const Pixel* ahead = prefetch_next && y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
-                simd::deblock_blend_block_row_u8_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), block_row,
-                                                    r0 + l * pitch, w, zero_from, kBlock, band - 1, ahead);
-            }
+            const int y = y_top + l0;
+            const bool ahead = prefetch_next && y + band_rows - 1 + kRandBlock < h;
+            simd::deblock_blend_block_rows_u8_i8(src.row<const Pixel>(y), src.stride, dst.row<Pixel>(y), dst.stride,
+                                                 block_row, r0, pitch, band_rows, w, zero_from, kBlock, band - 1,
+                                                 ahead ? src.row<const Pixel>(y + kRandBlock) : nullptr);
             continue;
         }
         auto gather = [&](int n) {

@@ -91,34 +91,43 @@ TEST_P(FgcSimdEquivalence, GatherBlockBands) {
     }
 }
 
-// The row straight from block pointers: the reference is the element-wise gather, the
-// zeros from grain_end (rdd5: the picture's width; vtm: past the last block) and the
-// reference deblocking and blending. Tables hold random int8 rows of pitch 64, as the scaled
-// tables do; grain_end takes the values the stripe passes and others.
+// Rows straight from block pointers: the reference is the element-wise gather, the zeros
+// from grain_end (rdd5: the picture's width; vtm: past the last block) and the reference
+// deblocking and blending of each row. Tables hold random int8 rows of pitch 64, as the
+// scaled tables do; grain_end takes the values the stripe passes and others.
 TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) {
+    constexpr std::ptrdiff_t kPitch = 64;
     std::vector<int8_t> table(64 * 64 * 4);
     for (auto& v : table) v = int8_t(uniform(0, 9) == 0 ? -128 * uniform(0, 1) + 127 * uniform(0, 1) : uniform(-128, 127));
     for (int iter = 0; iter < 2000; iter++) {
         const int bs = uniform(0, 3) ? 8 : 8 << uniform(1, 2);
         const int width = uniform(0, 3) ? uniform(1, 300) : 64 * uniform(1, 6) + uniform(-1, 1);
+        const int rows = uniform(1, 8);
         const int padded = (width + bs - 1) / bs * bs + (uniform(0, 1) ? bs : 0);  // the stripe's grain width
         const int grain_end = uniform(0, 2) == 0 ? width : uniform(0, 2) == 0 ? uniform(0, padded) : padded;
-        const std::ptrdiff_t offset = 64 * uniform(0, 7);
+        const std::ptrdiff_t offset = kPitch * uniform(0, 7 - (rows - 1) / 2);
+        const std::ptrdiff_t src_stride = width + uniform(0, 70), dst_stride = width + uniform(0, 70);
         std::vector<const int8_t*> blocks;
         for (int j = 0; j < padded / bs; j++)
-            blocks.push_back(table.data() + uniform(0, int(table.size()) - int(offset) - bs));
-        std::vector<int32_t> grain(std::size_t(padded) + 2, 0);
-        for (int x = 0; x < std::min(grain_end, padded); x++) grain[std::size_t(x)] = blocks[std::size_t(x / bs)][offset + x % bs];
-        fgc::deblock_stripe_vertical_edges(grain.data(), padded + 2, 1, width, bs);
-        std::vector<uint8_t> src(std::size_t(width) + 1), want(src.size(), 0xA5), got(src.size(), 0xA5);
+            blocks.push_back(table.data() + uniform(0, int(table.size() - offset - kPitch * (rows - 1)) - bs));
+        std::vector<uint8_t> src(std::size_t(src_stride) * rows + 1);
         for (auto& v : src) v = uint8_t(uniform(0, 3) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
-        fgc::blend_row_additive<uint8_t>(src.data(), want.data(), grain.data(), width, 8);
+        std::vector<uint8_t> want(std::size_t(dst_stride) * rows + 1, 0xA5), got(want);
+        for (int r = 0; r < rows; r++) {
+            std::vector<int32_t> grain(std::size_t(padded) + 2, 0);
+            for (int x = 0; x < std::min(grain_end, padded); x++)
+                grain[std::size_t(x)] = blocks[std::size_t(x / bs)][offset + r * kPitch + x % bs];
+            fgc::deblock_stripe_vertical_edges(grain.data(), padded + 2, 1, width, bs);
+            fgc::blend_row_additive<uint8_t>(src.data() + r * src_stride, want.data() + r * dst_stride, grain.data(),
+                                             width, 8);
+        }
         std::vector<int8_t> row(std::size_t(std::max(padded, width + 2)) + 1, int8_t(uniform(-128, 127)));
         const std::vector<uint8_t> ahead(src.size());
-        fgc::simd::deblock_blend_block_row_u8_i8(src.data(), got.data(), blocks.data(), offset, width, grain_end, bs,
-                                                 row.data(), uniform(0, 1) ? ahead.data() : nullptr);
-        ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs << " grain_end "
-                             << grain_end << " (the last byte is past the row and must stay untouched)";
+        fgc::simd::deblock_blend_block_rows_u8_i8(src.data(), src_stride, got.data(), dst_stride, blocks.data(), offset,
+                                                  kPitch, rows, width, grain_end, bs, row.data(),
+                                                  uniform(0, 1) ? ahead.data() : nullptr);
+        ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " rows " << rows << " bs " << bs
+                             << " grain_end " << grain_end << " (bytes between and past the rows must stay untouched)";
     }
 }
 

@@ -41,15 +41,18 @@ void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* gra
 void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
                               int bit_depth, const uint16_t* ahead = nullptr);
 
-// gather_block_bands_i8 of one row, the zeros from `grain_end` on and
-// deblock_blend_row_u8_i8, without the row of grain in memory: grain column x is
-// blocks[x / block][offset + x % block] for x < grain_end and 0 from there. Reads the
-// blocks that hold columns below min(grain_end, width + 1) (those the reference's
-// deblocking can read). `row` is scratch of 1 + max(block * ceil(min(grain_end, width + 1)
-// / block), width + 2) bytes, in which targets without a whole-row form gather the row.
-void deblock_blend_block_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
-                                   std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
-                                   const uint8_t* ahead = nullptr);
+// gather_block_bands_i8, the zeros from `grain_end` on and deblock_blend_row_u8_i8 for
+// `rows` rows, without the rows of grain in memory: grain column x of row r is
+// blocks[x / block][offset + r * pitch + x % block] for x < grain_end and 0 from there.
+// Reads the blocks that hold columns below min(grain_end, width + 1) (those the reference's
+// deblocking can read). src, dst and `ahead` (as in deblock_blend_row_u8_i8; may be null)
+// step by their strides from row to row. `row` is scratch of 1 + max(block *
+// ceil(min(grain_end, width + 1) / block), width + 2) bytes, in which targets without a
+// whole-row form gather each row.
+void deblock_blend_block_rows_u8_i8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
+                                    std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                    std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
+                                    const uint8_t* ahead = nullptr);
 
 // Rows of one block row of the stripe: for each of `count` blocks, `rows` rows of `block`
 // values (8, 16 or 32) that lie `pitch` apart from blocks[j] + offset, copied to

@@ -355,90 +355,139 @@ void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int 
             std::memcpy(out + r * out_stride + j * block, blocks[j] + offset + r * pitch, std::size_t(block));
 }
 
-// The generic form: the row gathered and zeroed into `row` (one element before column 0,
+// The generic form: each row gathered and zeroed into `row` (one element before column 0,
 // which DeblockBlendRowU8I8 reads and never uses), then blended from there.
-void DeblockBlendBlockRowViaBuffer(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
-                                   std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
-                                   const uint8_t* ahead) {
+void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
+                                    std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                    std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
+                                    const uint8_t* ahead) {
     int8_t* g = row + 1;
     const int end = std::min(grain_end, width + 1);
     const int count = (end + block - 1) / block;
-    GatherBlockBandsI8(blocks, offset, count, block, 1, 0, g, 0);
-    std::fill(g + end, g + width + 2, int8_t(0));
-    DeblockBlendRowU8I8(src, dst, g, width, block, ahead);
+    for (int r = 0; r < rows; r++) {
+        GatherBlockBandsI8(blocks, offset + r * pitch, count, block, 1, 0, g, 0);
+        std::fill(g + end, g + width + 2, int8_t(0));
+        DeblockBlendRowU8I8(src + r * src_stride, dst + r * dst_stride, g, width, block,
+                            ahead ? ahead + r * src_stride : nullptr);
+    }
 }
 
 #if HWY_TARGET == HWY_AVX3
-// 8-sample blocks, 64 columns per vector: each 64-bit lane is one block's row, loaded by a
-// gather from the block pointers, so the row never goes through memory. The neighbours of
-// the [1 2 1] filter are the row shifted by one byte, made by 64-bit lane shifts with the
-// byte that crosses a lane (or a vector) brought in by valignq from the adjacent vector.
-// The arithmetic is DeblockBlendRowU8I8's.
-void DeblockBlendBlockRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
-                              std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
-                              const uint8_t* ahead) {
-    if (block != 8) return DeblockBlendBlockRowViaBuffer(src, dst, blocks, offset, width, grain_end, block, row, ahead);
+// 8-sample blocks, 64 columns per vector: each 64-bit lane is one block's row, assembled in
+// registers from the block pointers (vpgatherqq was slower on Zen 5), so no row of grain
+// goes through memory; a vector's 8 pointers are read once for all the rows. The
+// neighbours of the [1 2 1] filter are the row shifted by one byte, made by 64-bit lane
+// shifts, with the byte that crosses a lane (or the vector) brought in by valignq from the
+// row of the block before or after the vector. The arithmetic is DeblockBlendRowU8I8's.
+void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
+                               std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                               std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
+                               const uint8_t* ahead) {
+    if (block != 8)
+        return DeblockBlendBlockRowsViaBuffer(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
+                                              grain_end, block, row, ahead);
     // columns 0..len-1 of a vector
     auto first_n = [](int len) -> __mmask64 {
         return len <= 0 ? 0 : len >= 64 ? ~__mmask64(0) : (__mmask64(1) << len) - 1;
     };
-    const int end = std::min(grain_end, width + 1);  // columns that can reach the output
-    const int count = (end + 7) / 8;                 // blocks read
-    const __m512i at = _mm512_set1_epi64(offset);
-    // the grain of columns x0 .. x0 + 63, zero from `end`
-    auto grain_at = [&](int x0) {
-        const int j0 = x0 / 8;
-        if (x0 + 64 <= end) {
-            const int8_t* const* b = blocks + j0;
+    auto qword = [](const int8_t* p) {
+        int64_t v;
+        std::memcpy(&v, p, sizeof(v));
+        return v;
+    };
+    const int end = std::min(grain_end, width + 1);  // columns that can reach the output; 0 from here
+    const __m512i flip = _mm512_set1_epi8(0x7F), bias = _mm512_set1_epi8(char(0x80));
+    // The last and first column of every block. Column 0 has no edge on its left, and no
+    // edge lies at `width` for the last column to be left of.
+    auto filtered_at = [&](int x) {
+        __mmask64 m = 0x8181818181818181ull;
+        if (x == 0) m &= ~__mmask64(1);
+        if (x + 64 >= width) m &= first_n(width - 1 - x) | 0x0101010101010101ull;
+        return m;
+    };
+    auto blend = [&](int x, int r, __m512i a, __m512i b, __m512i c, __mmask64 filtered) {
+        const __m512i nf = _mm512_avg_epu8(_mm512_avg_epu8(_mm512_xor_si512(a, flip), _mm512_xor_si512(c, flip)),
+                                           _mm512_xor_si512(b, flip));
+        const __m512i g = _mm512_mask_blend_epi8(filtered, b, _mm512_xor_si512(nf, flip));
+        const uint8_t* s = src + r * src_stride + x;
+        uint8_t* d = dst + r * dst_stride + x;
+        if (x + 64 <= width) {
+            _mm512_storeu_si512(d, _mm512_xor_si512(_mm512_adds_epi8(_mm512_xor_si512(_mm512_loadu_si512(s), bias), g),
+                                                    bias));
+        } else {
+            const __mmask64 inside = first_n(width - x);
+            const __m512i sv = _mm512_xor_si512(_mm512_maskz_loadu_epi8(inside, s), bias);
+            _mm512_mask_storeu_epi8(d, inside, _mm512_xor_si512(_mm512_adds_epi8(sv, g), bias));
+        }
+        if (ahead) PrefetchAhead(ahead + r * src_stride, x);
+    };
+    // Columns x .. x + 63, all before `end`; the block before them (has_left) and the one
+    // after (has_right) are read too.
+    auto whole = [&](int x, auto has_left, auto has_right) {
+        const int8_t* const* bl = blocks + x / 8;
+        const int8_t* p[8];
+        for (int k = 0; k < 8; k++) p[k] = bl[k] + offset;
+        const int8_t* left = has_left ? bl[-1] + offset + 7 : nullptr;
+        const int8_t* right = has_right ? bl[8] + offset : nullptr;
+        const __mmask64 filtered = filtered_at(x);
+        for (int r = 0; r < rows; r++) {
+            const std::ptrdiff_t o = r * pitch;
             auto pair = [&](int k) {
-                return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(b[k] + offset)),
-                                          _mm_loadl_epi64(reinterpret_cast<const __m128i*>(b[k + 1] + offset)));
+                return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k] + o)),
+                                          _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k + 1] + o)));
             };
             const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0)), pair(2), 1);
             const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4)), pair(6), 1);
-            return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+            const __m512i b = _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+            __m512i a = _mm512_slli_epi64(b, 8), c = _mm512_srli_epi64(b, 8);
+            if constexpr (decltype(has_left)::value)  // column x - 1, the top byte of lane 7
+                a = _mm512_or_si512(a, _mm512_srli_epi64(_mm512_alignr_epi64(b, _mm512_set1_epi64(qword(left - 7 + o)), 7), 56));
+            else
+                a = _mm512_or_si512(a, _mm512_srli_epi64(_mm512_alignr_epi64(b, _mm512_setzero_si512(), 7), 56));
+            if constexpr (decltype(has_right)::value)  // column x + 64, the low byte of lane 0
+                c = _mm512_or_si512(c, _mm512_slli_epi64(_mm512_alignr_epi64(_mm512_set1_epi64(qword(right + o)), b, 1), 56));
+            else
+                c = _mm512_or_si512(c, _mm512_slli_epi64(_mm512_alignr_epi64(_mm512_setzero_si512(), b, 1), 56));
+            blend(x, r, a, b, c, filtered);
         }
-        if (x0 >= end) return _mm512_setzero_si512();
-        const __mmask8 valid = __mmask8((1u << (count - j0)) - 1);
-        const __m512i p = _mm512_add_epi64(_mm512_maskz_loadu_epi64(valid, blocks + j0), at);
-        const __m512i g = _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), valid, p, nullptr, 1);
-        return _mm512_maskz_mov_epi8(first_n(end - x0), g);
     };
-    const __m512i flip = _mm512_set1_epi8(0x7F), bias = _mm512_set1_epi8(char(0x80));
-    // the last and first column of every block; column 0 has no edge on its left
-    constexpr __mmask64 kEdges = 0x8181818181818181ull;
-    __m512i prev = _mm512_setzero_si512(), cur = grain_at(0);
-    for (int x = 0; x < width; x += 64) {
-        const __m512i next = x + 64 < width ? grain_at(x + 64) : _mm512_setzero_si512();
-        const __m512i a = _mm512_or_si512(_mm512_slli_epi64(cur, 8),
-                                          _mm512_srli_epi64(_mm512_alignr_epi64(cur, prev, 7), 56));
-        const __m512i c = _mm512_or_si512(_mm512_srli_epi64(cur, 8),
-                                          _mm512_slli_epi64(_mm512_alignr_epi64(next, cur, 1), 56));
-        __mmask64 filtered = kEdges;
-        if (x == 0) filtered &= ~__mmask64(1);
-        // no edge at `width` for its last column to be left of
-        if (x + 64 >= width) filtered &= first_n(width - 1 - x) | 0x0101010101010101ull;
-        const __m512i nf = _mm512_avg_epu8(_mm512_avg_epu8(_mm512_xor_si512(a, flip), _mm512_xor_si512(c, flip)),
-                                           _mm512_xor_si512(cur, flip));
-        const __m512i g = _mm512_mask_blend_epi8(filtered, cur, _mm512_xor_si512(nf, flip));
-        if (x + 64 <= width) {
-            const __m512i s = _mm512_xor_si512(_mm512_loadu_si512(src + x), bias);
-            _mm512_storeu_si512(dst + x, _mm512_xor_si512(_mm512_adds_epi8(s, g), bias));
-        } else {
-            const __mmask64 inside = first_n(width - x);
-            const __m512i s = _mm512_xor_si512(_mm512_maskz_loadu_epi8(inside, src + x), bias);
-            _mm512_mask_storeu_epi8(dst + x, inside, _mm512_xor_si512(_mm512_adds_epi8(s, g), bias));
+    // Any other columns (past `end` in part or whole): through a buffer, element by element.
+    auto partial = [&](int x) {
+        const __mmask64 filtered = filtered_at(x);
+        HWY_ALIGN int8_t g[64 + 2];
+        for (int r = 0; r < rows; r++) {
+            const std::ptrdiff_t o = offset + r * pitch;
+            for (int i = 0; i < 66; i++) {
+                const int col = x - 1 + i;
+                g[i] = col >= 0 && col < end ? blocks[col / 8][o + col % 8] : int8_t(0);
+            }
+            blend(x, r, _mm512_loadu_si512(g), _mm512_loadu_si512(g + 1), _mm512_loadu_si512(g + 2), filtered);
         }
-        PrefetchAhead(ahead, x);
-        prev = cur;
-        cur = next;
+    };
+    using No = std::false_type;
+    using Yes = std::true_type;
+    int x = 0;
+    if (width <= 0) return;
+    if (64 < end)
+        whole(0, No{}, Yes{});
+    else if (64 == end)
+        whole(0, No{}, No{});
+    else
+        partial(0);
+    for (x = 64; x < width && x + 64 < end; x += 64) whole(x, Yes{}, Yes{});
+    if (x < width && x + 64 == end) {
+        whole(x, Yes{}, No{});
+        x += 64;
     }
+    for (; x < width; x += 64) partial(x);
 }
 #else
-void DeblockBlendBlockRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
-                              std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
-                              const uint8_t* ahead) {
-    DeblockBlendBlockRowViaBuffer(src, dst, blocks, offset, width, grain_end, block, row, ahead);
+void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
+                               std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                               std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
+                               const uint8_t* ahead) {
+    DeblockBlendBlockRowsViaBuffer(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width, grain_end,
+                                   block, row, ahead);
 }
 #endif
 
@@ -505,7 +554,7 @@ HWY_EXPORT(DeblockBlendRowU16);
 HWY_EXPORT(DeblockBlendRowU8I8);
 HWY_EXPORT(GatherBlockBandsI8);
 HWY_EXPORT(DeblockBlendRowU16I8);
-HWY_EXPORT(DeblockBlendBlockRowU8I8);
+HWY_EXPORT(DeblockBlendBlockRowsU8I8);
 HWY_EXPORT(BlockSumsU8);
 HWY_EXPORT(BlockSumsU16);
 
@@ -532,10 +581,12 @@ void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, i
                            std::ptrdiff_t pitch, int8_t* out, std::ptrdiff_t out_stride) {
     HWY_DYNAMIC_DISPATCH(GatherBlockBandsI8)(blocks, offset, count, block, rows, pitch, out, out_stride);
 }
-void deblock_blend_block_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* const* blocks,
-                                   std::ptrdiff_t offset, int width, int grain_end, int block, int8_t* row,
-                                   const uint8_t* ahead) {
-    HWY_DYNAMIC_DISPATCH(DeblockBlendBlockRowU8I8)(src, dst, blocks, offset, width, grain_end, block, row, ahead);
+void deblock_blend_block_rows_u8_i8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
+                                    std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                    std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
+                                    const uint8_t* ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendBlockRowsU8I8)(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows,
+                                                    width, grain_end, block, row, ahead);
 }
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);
