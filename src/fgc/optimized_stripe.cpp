@@ -70,7 +70,11 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
             continue;
         }
         uint32_t* sums = scratch.sums.data() + yi * columns;
-        if (rdd5 || rows_inside == kBlock) {
+        // 8-bit samples with int8 tables: whole blocks get their tables from block_tables_u8,
+        // which sums them itself (the other blocks do not read sums when the rows are whole)
+        constexpr bool kBytes = sizeof(Pixel) == 1 && sizeof(Table) == 1;
+        const bool table_kernel = kBytes && tables && rows_inside == kBlock;
+        if ((rdd5 || rows_inside == kBlock) && !table_kernel) {
             if constexpr (sizeof(Pixel) == 1)
                 simd::block_sums_u8(src.row<const Pixel>(y0), src.stride, rows_inside, w, kBlock, sums);
             else
@@ -87,8 +91,14 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
             const int avg_shift = kLog2Area + bit_depth - 8;
             const int32_t* offsets = table_offsets_[c].data();
             const Table* base = table0 + row_offset;
-            for (; j < whole_blocks; j++)
-                block_row[j] = base + offsets[std::min<uint32_t>(sums[j] >> avg_shift, 255)] + places[j];
+            if constexpr (kBytes) {
+                simd::block_tables_u8(src.row<const Pixel>(y0), src.stride, kBlock, w, kBlock, avg_shift, offsets,
+                                      places, base, block_row);
+                j = whole_blocks;
+            } else {
+                for (; j < whole_blocks; j++)
+                    block_row[j] = base + offsets[std::min<uint32_t>(sums[j] >> avg_shift, 255)] + places[j];
+            }
         }
         for (; j < columns; j++) {
             const int x0 = j * kBlock;

@@ -131,6 +131,38 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) {
     }
 }
 
+// Each whole block's table pointer from its sample sum: the reference is the element-wise
+// sum, shift, clamp and look-up. Samples are often all 255 (the largest sums) and the shift
+// runs from the 8-bit one down to 0, so that the clamp at 255 is exercised.
+TEST_P(FgcSimdEquivalence, BlockTablesFromSums8Bit) {
+    std::vector<int8_t> tables(1 << 16);
+    std::vector<int32_t> offsets(256);
+    for (int iter = 0; iter < 1000; iter++) {
+        const int bs = uniform(0, 2) ? 8 : 8 << uniform(1, 2);
+        const int rows = uniform(0, 3) ? bs : uniform(1, bs), width = uniform(0, 2) ? uniform(1, 700) : 64 * uniform(1, 10);
+        const int shift = uniform(0, 3) ? (bs == 8 ? 6 : bs == 16 ? 8 : 10) : uniform(0, 10);
+        const std::ptrdiff_t stride = width + uniform(0, 40);
+        const bool flat = uniform(0, 3) == 0;
+        std::vector<uint8_t> src(std::size_t(stride) * rows);
+        for (auto& v : src) v = flat ? 255 : uint8_t(uniform(0, 255));
+        for (auto& o : offsets) o = uniform(0, 4) * 8192;
+        const int blocks = width / bs;
+        std::vector<int32_t> places(static_cast<std::size_t>(blocks));
+        for (auto& p : places) p = uniform(0, 8191);
+        std::vector<const int8_t*> want(std::size_t(blocks) + 1, nullptr), got(want);
+        for (int j = 0; j < blocks; j++) {
+            uint32_t sum = 0;
+            for (int y = 0; y < rows; y++)
+                for (int k = 0; k < bs; k++) sum += src[std::size_t(y * stride + j * bs + k)];
+            want[std::size_t(j)] = tables.data() + offsets[std::min<uint32_t>(sum >> shift, 255)] + places[std::size_t(j)];
+        }
+        fgc::simd::block_tables_u8(src.data(), stride, rows, width, bs, shift, offsets.data(), places.data(),
+                                   tables.data(), got.data());
+        ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " rows " << rows << " bs " << bs
+                             << " shift " << shift << " (the entry past the last whole block must stay untouched)";
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Targets, FgcSimdEquivalence, ::testing::ValuesIn(simd::available_targets()),
                          [](const ::testing::TestParamInfo<simd::Target>& i) { return i.param.name; });
 

@@ -64,6 +64,13 @@ void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, i
 // at x = 0, block, 2*block, ... (block 8, 16 or 32; rows 1..32): the integer sums the local
 // adaptation (block_average_inside / block_average_replicated) divides or shifts.
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
+// The int8 grain of the `width / block` whole blocks from x = 0 (block_sums_u8's blocks):
+// blocks[j] = base + offsets[min(sum_j >> shift, 255)] + places[j], sum_j the block's
+// sample sum. Twin of block_sums_u8 followed by the optimized stripe's look-up of each
+// block's interval table (offsets: per average, the interval's table; places: per block,
+// its position and sign in a table). Every offsets[a] + places[j] must fit int32.
+void block_tables_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                     const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** blocks);
 void block_sums_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
 
 }  // namespace filmgrain::fgc::simd

@@ -516,6 +516,37 @@ void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width,
         for (int y = 0; y < rows; y++) sums[x >> log2_block] += src[stride * y + x];
 }
 
+// block_sums_u8 of whole blocks followed by the stripe's look-up of each block's table.
+void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                   const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
+    const int blocks = width / block;
+    int j = 0;
+#if HWY_TARGET == HWY_AVX3
+    // 8 blocks per vector: vpsadbw leaves each block row's sum in its 64-bit lane, the lane
+    // of the block's pointer; the few look-ups per vector are one gather.
+    if (block == 8) {
+        const __m512i zero = _mm512_setzero_si512(), top = _mm512_set1_epi64(255);
+        const __m512i at = _mm512_set1_epi64(reinterpret_cast<int64_t>(base));
+        const __m128i count = _mm_cvtsi32_si128(shift);
+        for (; j + 8 <= blocks; j += 8) {
+            __m512i acc = zero;
+            for (int y = 0; y < rows; y++)
+                acc = _mm512_add_epi64(acc, _mm512_sad_epu8(_mm512_loadu_si512(src + stride * y + 8 * j), zero));
+            const __m512i avg = _mm512_min_epu64(_mm512_srl_epi64(acc, count), top);
+            const __m256i at_table = _mm256_add_epi32(_mm512_i64gather_epi32(avg, offsets, 4),
+                                                      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(places + j)));
+            _mm512_storeu_si512(out + j, _mm512_add_epi64(_mm512_cvtepi32_epi64(at_table), at));
+        }
+    }
+#endif
+    uint32_t sums[64];
+    for (; j < blocks; j += 64) {
+        const int n = std::min(64, blocks - j);
+        BlockSumsU8(src + j * block, stride, rows, n * block, block, sums);
+        for (int k = 0; k < n; k++) out[j + k] = base + offsets[std::min<uint32_t>(sums[k] >> shift, 255)] + places[j + k];
+    }
+}
+
 void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     const hn::ScalableTag<uint32_t> d32;
     const hn::Rebind<uint16_t, decltype(d32)> d16;
@@ -556,6 +587,7 @@ HWY_EXPORT(GatherBlockBandsI8);
 HWY_EXPORT(DeblockBlendRowU16I8);
 HWY_EXPORT(DeblockBlendBlockRowsU8I8);
 HWY_EXPORT(BlockSumsU8);
+HWY_EXPORT(BlockTablesU8);
 HWY_EXPORT(BlockSumsU16);
 
 void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
@@ -590,6 +622,10 @@ void deblock_blend_block_rows_u8_i8(const uint8_t* src, std::ptrdiff_t src_strid
 }
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);
+}
+void block_tables_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                     const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** blocks) {
+    HWY_DYNAMIC_DISPATCH(BlockTablesU8)(src, stride, rows, width, block, shift, offsets, places, base, blocks);
 }
 void block_sums_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU16)(src, stride, rows, width, block, sums);
