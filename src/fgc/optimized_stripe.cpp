@@ -19,8 +19,9 @@ namespace filmgrain::fgc {
 // of grain rows (int8 when the tables are: 8-bit grain always fits), which the fused
 // deblocking + blending kernel adds to the picture row by row: the grain of a whole stripe
 // is never written out. 8-bit pictures with int8 tables skip the band too: their kernel
-// loads each row's grain from the blocks' pointers itself. Blocks that touch the picture's right or bottom edge take their
-// averages from the reference functions.
+// loads each row's grain from the blocks' pointers itself, and their whole blocks get their
+// tables from a kernel that sums them. Blocks that touch the picture's right or bottom edge
+// take their averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
 template <typename Table>
 alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};

@@ -427,7 +427,7 @@ void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, ui
         const int8_t* const* bl = blocks + x / 8;
         const int8_t* p[8];
         for (int k = 0; k < 8; k++) p[k] = bl[k] + offset;
-        const int8_t* left = has_left ? bl[-1] + offset + 7 : nullptr;
+        const int8_t* left = has_left ? bl[-1] + offset : nullptr;
         const int8_t* right = has_right ? bl[8] + offset : nullptr;
         const __mmask64 filtered = filtered_at(x);
         for (int r = 0; r < rows; r++) {
@@ -440,14 +440,12 @@ void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, ui
             const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4)), pair(6), 1);
             const __m512i b = _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
             __m512i a = _mm512_slli_epi64(b, 8), c = _mm512_srli_epi64(b, 8);
-            if constexpr (decltype(has_left)::value)  // column x - 1, the top byte of lane 7
-                a = _mm512_or_si512(a, _mm512_srli_epi64(_mm512_alignr_epi64(b, _mm512_set1_epi64(qword(left - 7 + o)), 7), 56));
-            else
-                a = _mm512_or_si512(a, _mm512_srli_epi64(_mm512_alignr_epi64(b, _mm512_setzero_si512(), 7), 56));
-            if constexpr (decltype(has_right)::value)  // column x + 64, the low byte of lane 0
-                c = _mm512_or_si512(c, _mm512_slli_epi64(_mm512_alignr_epi64(_mm512_set1_epi64(qword(right + o)), b, 1), 56));
-            else
-                c = _mm512_or_si512(c, _mm512_slli_epi64(_mm512_alignr_epi64(_mm512_setzero_si512(), b, 1), 56));
+            // column x - 1 is the top byte of the block before (zero at column 0), column x + 64
+            // the low byte of the block after
+            const __m512i before = has_left ? _mm512_set1_epi64(qword(left + o)) : _mm512_setzero_si512();
+            const __m512i after = has_right ? _mm512_set1_epi64(qword(right + o)) : _mm512_setzero_si512();
+            a = _mm512_or_si512(a, _mm512_srli_epi64(_mm512_alignr_epi64(b, before, 7), 56));
+            c = _mm512_or_si512(c, _mm512_slli_epi64(_mm512_alignr_epi64(after, b, 1), 56));
             blend(x, r, a, b, c, filtered);
         }
     };
@@ -543,7 +541,8 @@ void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int widt
     for (; j < blocks; j += 64) {
         const int n = std::min(64, blocks - j);
         BlockSumsU8(src + j * block, stride, rows, n * block, block, sums);
-        for (int k = 0; k < n; k++) out[j + k] = base + offsets[std::min<uint32_t>(sums[k] >> shift, 255)] + places[j + k];
+        for (int k = 0; k < n; k++)
+            out[j + k] = base + offsets[std::min<uint32_t>(sums[k] >> shift, 255)] + places[j + k];
     }
 }
 
