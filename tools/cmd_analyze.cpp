@@ -248,7 +248,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
             rp.name = names[c];
             rp.present = r.present && e.params.apply_grain;
             rp.curve = r.curve;
-            rp.observations = analyzer->observations()[c].fine_blocks;
+            rp.observations = analyzer->observations()[c].blocks;
             rp.points = r.points;
             rp.power = analysis::mean_power(analyzer->observations()[c], 0, 255);
             std::ostringstream s;

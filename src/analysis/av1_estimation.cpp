@@ -161,7 +161,7 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
         cp.grain_seed = (p.grain_seed + 4099 * s) & 0xFFFF;
         av1::apply_film_grain(cp, clean.view(), grainy.view(), 2);
         for (int c = 0; c < num_planes; c++)
-            if (*nps[c] > 0) gain[c] += measure_grain_level(grainy.view(), clean.view(), c, kFineLevelBlock) / 64.0 / kCalibrationSeeds;
+            if (*nps[c] > 0) gain[c] += measure_grain_level(grainy.view(), clean.view(), c, kAv1LevelBlock) / 64.0 / kCalibrationSeeds;
     }
     // scaling_shift: the finest (largest) for which every scaling value fits in 8 bits.
     double need = 0;
@@ -204,7 +204,7 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
     std::array<std::vector<LevelPoint>, 3> points;
     for (int c = 0; c < num_planes; c++) {
         auto& rep = e.components[c];
-        rep.note = fit_component_curve(obs[c].fine_blocks, target.bit_depth, rep.curve, c > 0);
+        rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve, c > 0);
         if (!rep.note.empty()) continue;
         rep.points = fit_piecewise_linear(rep.curve, max_points[c], target.accuracy);
         rep.error = worst_band_error(rep.curve, evaluate_piecewise_linear(rep.points), &rep.worst_band);

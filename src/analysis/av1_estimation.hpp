@@ -22,7 +22,8 @@ struct Av1Target {
     // Largest tolerated relative error of the scaling function. Tighter than FGC's: the
     // syntax always has room for 14 luma points, and at 5 % the fit stopped at 3-6 of them,
     // cutting corners at the ends of the curve (median band error 4.8 % -> 2.6 %).
-    double accuracy = 0.02;    double lag_spectrum_tolerance = 0.08;  // least tolerated mean spectrum deviation from the longest lag's model
+    double accuracy = 0.02;
+    double lag_spectrum_tolerance = 0.08;  // least tolerated mean spectrum deviation from the longest lag's model
     int max_lag = 3;
     int grain_seed = 7391;
 };

@@ -151,7 +151,6 @@ void accumulate_ar(const cv::Mat& normalized, const cv::Mat& luma_normalized, co
 
 void merge_observations(PlaneObservations& total, const PlaneObservations& part) {
     total.blocks.insert(total.blocks.end(), part.blocks.begin(), part.blocks.end());
-    total.fine_blocks.insert(total.fine_blocks.end(), part.fine_blocks.begin(), part.fine_blocks.end());
     for (int b = 0; b < kPowerBins; b++) {
         if (!part.dct_blocks[b]) continue;
         total.dct_power[b] += part.dct_power[b];
@@ -208,9 +207,8 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
         cv::minMaxLoc(source(r), &mn, &mx);
         return mn <= 0 || mx >= maxv;
     };
-    for (const auto& [size, blocks] : {std::pair{kLevelBlock, &out.blocks}, std::pair{kFineLevelBlock, &out.fine_blocks}})
-        for (const cv::Rect& r : place_flat_blocks(integral, w, h, size))
-            if (!clipped(r)) blocks->push_back({float(cv::mean(denoised(r))[0] * to8), float(detrended_sigma(grain(r), nullptr))});
+    for (const cv::Rect& r : place_flat_blocks(integral, w, h, request.level_block))
+        if (!clipped(r)) out.blocks.push_back({float(cv::mean(denoised(r))[0] * to8), float(detrended_sigma(grain(r), nullptr))});
     std::vector<cv::Rect> ar_blocks;
     if (request.ar_equations)
         for (const cv::Rect& r : place_flat_blocks(integral, w, h, kArBlock)) {

@@ -10,14 +10,15 @@
 
 namespace filmgrain::analysis {
 
-inline constexpr int kLevelBlock = 32;     // block of the FGC (intensity, level) observations
-// AV1 levels come from smaller blocks: dark and bright areas of real pictures are often too
-// small for 32x32 (a 40-sample-wide patch yields none), and the AV1 points, which follow the
-// curve closely, missed the extreme bands. FGC keeps 32: its cut-off templates match a
-// coarse grain's spectrum less closely than the AR filter does, and a 16x16 planar detrend
-// removes more of the low frequencies both measure, so its calibration no longer cancels
-// (strong coarse grain came out 8 % high).
-inline constexpr int kFineLevelBlock = 16;
+// Blocks of the (intensity, level) observations, per model (ObservationRequest::level_block;
+// each model's calibration measures with its own). AV1 takes small blocks: dark and bright
+// areas of real pictures are often too small for 32x32 (a 48-sample-wide patch yields none),
+// and the AV1 points, which follow the curve closely, missed the extreme bands. FGC keeps 32:
+// its cut-off templates match a coarse grain's spectrum less closely than the AR filter
+// does, and a 16x16 planar detrend removes more of the low frequencies both measure, so its
+// calibration no longer cancels (strong coarse grain came out 8 % high).
+inline constexpr int kFgcLevelBlock = 32;
+inline constexpr int kAv1LevelBlock = 16;
 // The AR fit needs longer rows than the level: its equations lose kMaxArLag samples per side
 // and 16x16 blocks bias the normalized correlations low.
 inline constexpr int kArBlock = 32;
@@ -61,8 +62,7 @@ struct LagSums {
 };
 
 struct PlaneObservations {
-    std::vector<BlockSample> blocks;       // kLevelBlock
-    std::vector<BlockSample> fine_blocks;  // kFineLevelBlock
+    std::vector<BlockSample> blocks;  // ObservationRequest::level_block square
     std::array<cv::Mat, kPowerBins> dct_power;  // CV_64F 64x64 sums of squared coefficients
     std::array<int, kPowerBins> dct_blocks{};
     std::array<LagSums, kPowerBins> lags;       // over the same 64x64 blocks
@@ -89,6 +89,7 @@ struct PlaneObservations {
 struct ObservationRequest {
     bool dct_power = true;       // FGC cut-offs
     bool ar_equations = false;   // AV1 AR model
+    int level_block = kFgcLevelBlock;  // kAv1LevelBlock for AV1
     int max_ar_blocks = 160;     // per picture and plane: enough equations, bounded time
     int half = 0;                // which of ar_halves this picture adds to
 };
@@ -97,12 +98,12 @@ struct ObservationRequest {
 // Pictures merged in the same order give the same sums, however they were gathered.
 void merge_observations(PlaneObservations& total, const PlaneObservations& part);
 
-// Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma
-// grain divided by its block level, resampled to this plane's size.
-// Returns this plane's grain divided by its block level (for the chroma planes' luma term).
 // Counts `source`'s samples outside legal_min8..legal_max8 (8-bit scale) and on those bounds.
 void count_legal_range(const cv::Mat& source, int bit_depth, int legal_min8, int legal_max8, PlaneObservations& out);
 
+// Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma
+// grain divided by its block level, resampled to this plane's size.
+// Returns this plane's grain divided by its block level (for the chroma planes' luma term).
 cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
                       int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
                       PlaneObservations& out);

@@ -32,7 +32,7 @@ public:
         const auto key = std::make_tuple(c, h, v, lsf, value);
         if (auto it = cache_.find(key); it != cache_.end()) return it->second;
         synthesize(clean_, grainy_, c, h, v, lsf, value);
-        const double g = measure_grain_level(grainy_.view(), clean_.view(), c, kLevelBlock) / value;
+        const double g = measure_grain_level(grainy_.view(), clean_.view(), c, kFgcLevelBlock) / value;
         cache_[key] = g;
         return g;
     }

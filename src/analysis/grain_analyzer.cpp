@@ -73,6 +73,7 @@ void GrainAnalyzer::analyse(std::size_t wi) {
     ObservationRequest req;
     req.dct_power = true;  // FGC cut-offs; the spectrum of the report for both models
     req.ar_equations = o_.model == GrainModel::kAv1;
+    req.level_block = o_.model == GrainModel::kAv1 ? kAv1LevelBlock : kFgcLevelBlock;
     // the clip's analysed pictures alternate between the halves, wherever the range starts
     req.half = (k / o_.frame_step) & 1;
     PictureObservations picture;

@@ -8,7 +8,7 @@
 
 namespace filmgrain::analysis {
 
-// `block`: the observations' block size (kLevelBlock or kFineLevelBlock).
+// `block`: the observations' block size (kFgcLevelBlock or kAv1LevelBlock).
 double measure_grain_level(const cv::Mat& grain, int block);
 
 // Grain level of plane p of `grainy` - `clean`.

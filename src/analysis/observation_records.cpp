@@ -58,12 +58,10 @@ std::vector<uint8_t> serialize_picture_observations(const PictureObservations& p
     w.put<int64_t>(picture.flat_samples);
     w.put<int64_t>(picture.reliable_samples);
     for (const PlaneObservations& p : picture.planes) {
-        for (const auto* blocks : {&p.blocks, &p.fine_blocks}) {
-            w.put<uint64_t>(blocks->size());
-            for (const BlockSample& b : *blocks) {
-                w.put(b.intensity8);
-                w.put(b.sigma);
-            }
+        w.put<uint64_t>(p.blocks.size());
+        for (const BlockSample& b : p.blocks) {
+            w.put(b.intensity8);
+            w.put(b.sigma);
         }
         for (int b = 0; b < kPowerBins; b++) {
             w.put<int32_t>(p.dct_blocks[b]);
@@ -99,16 +97,14 @@ PictureObservations deserialize_picture_observations(const uint8_t* data, std::s
     pic.flat_samples = r.get<int64_t>("flat_samples");
     pic.reliable_samples = r.get<int64_t>("reliable_samples");
     for (PlaneObservations& p : pic.planes) {
-        for (auto* blocks : {&p.blocks, &p.fine_blocks}) {
-            const uint64_t n = r.get<uint64_t>("block count");
-            if (n > (r.size - r.pos) / (2 * sizeof(float)))
-                throw Error(ErrorCode::kMalformedPayload, "observation record: block count " + std::to_string(n) +
-                                                              " exceeds the record's " + std::to_string(r.size) + " bytes");
-            blocks->resize(n);
-            for (BlockSample& b : *blocks) {
-                b.intensity8 = r.get<float>("blocks");
-                b.sigma = r.get<float>("blocks");
-            }
+        const uint64_t n = r.get<uint64_t>("block count");
+        if (n > (r.size - r.pos) / (2 * sizeof(float)))
+            throw Error(ErrorCode::kMalformedPayload, "observation record: block count " + std::to_string(n) +
+                                                          " exceeds the record's " + std::to_string(r.size) + " bytes");
+        p.blocks.resize(n);
+        for (BlockSample& b : p.blocks) {
+            b.intensity8 = r.get<float>("blocks");
+            b.sigma = r.get<float>("blocks");
         }
         for (int b = 0; b < kPowerBins; b++) {
             p.dct_blocks[b] = r.get<int32_t>("dct_blocks");
