@@ -248,12 +248,20 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
             rp.name = names[c];
             rp.present = r.present && e.params.apply_grain;
             rp.curve = r.curve;
-            rp.observations = analyzer->observations()[c].blocks;
+            // chroma curves and points are over the scaling index, which may mix in the luma
+            rp.observations = analysis::blocks_by_chroma_index(analyzer->observations()[c].blocks, r.luma_quarters);
             rp.points = r.points;
             rp.power = analysis::mean_power(analyzer->observations()[c], 0, 255);
             std::ostringstream s;
             if (r.present) {
                 s << r.points.size() << " scaling point(s), worst band error " << pct(r.error) << "; AR lag " << e.chosen_lag;
+                if (c > 0 && !r.spread_by_luma_quarters.empty()) {
+                    s << "; scaling index " << (4 - r.luma_quarters) * 25 << " % chroma + " << r.luma_quarters * 25
+                      << " % luma (level spread around the curve for luma 0/25/50/75/100 %:";
+                    char v[32];
+                    for (double x : r.spread_by_luma_quarters) s << (std::snprintf(v, sizeof v, " %.3f", x), v);
+                    s << ")";
+                }
                 if (!r.residual_by_lag.empty())
                     s << " (normalized residual by lag: " << list_percent(r.residual_by_lag)
                       << "; spectrum deviation from the longest lag: " << list_percent(r.spectrum_error_by_lag)

@@ -15,6 +15,10 @@ namespace {
 constexpr int kCalibrationSize = 256;
 constexpr int kCalibrationSeeds = 6;  // templates are random: average over realizations
 constexpr double kMinArEquations = 500;
+// The chroma index takes a luma share only when it explains the blocks' levels clearly
+// better: their spread around its curve at least this much smaller than around the chroma
+// sample's own (the blocks are the same, so the comparison's noise is far below this).
+constexpr double kLumaShareMinGain = 0.05;
 
 std::vector<int> lag_indices(int lag, bool with_luma) {
     std::vector<int> idx;
@@ -48,7 +52,26 @@ int choose_ar_shift(const std::array<std::vector<double>, 3>& coeffs) {
     return 6;
 }
 
+// Pooled standard deviation of the blocks' levels within the curve's sub-ranges: what the
+// index leaves unexplained (one degree of freedom per sub-range, so finer indices gain
+// nothing by spreading the blocks over more sub-ranges).
+double within_sub_range_spread(const LevelCurve& curve) {
+    double ss = 0, dof = 0;
+    for (int s = 0; s < kSubRanges; s++)
+        if (curve.sub_range_count[s] > 1) {
+            ss += (curve.sub_range_count[s] - 1) * curve.sub_range_spread[s] * curve.sub_range_spread[s];
+            dof += curve.sub_range_count[s] - 1;
+        }
+    return dof > 0 ? std::sqrt(ss / dof) : 0.0;
+}
+
 }  // namespace
+
+std::vector<BlockSample> blocks_by_chroma_index(const std::vector<BlockSample>& blocks, int luma_quarters) {
+    std::vector<BlockSample> out = blocks;
+    for (BlockSample& b : out) b.intensity8 = ((4 - luma_quarters) * b.intensity8 + luma_quarters * b.luma8) / 4;
+    return out;
+}
 
 std::vector<double> solve_ar(const ArEquations& eq, int lag, bool with_luma, double* residual) {
     const auto idx = lag_indices(lag, with_luma);
@@ -100,7 +123,7 @@ std::vector<double> ar_power_spectrum(const std::vector<double>& coefficients, i
 
 Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoint>, 3>& points, int lag,
                                           const std::array<std::vector<double>, 3>& coefficients,
-                                          const Av1Target& target) {
+                                          const Av1Target& target, const std::array<int, 3>& luma_quarters) {
     const int num_planes = target.chroma == ChromaFormat::k400 ? 1 : 3;
     Av1FilmGrainParams p;
     bool any = false;
@@ -111,10 +134,12 @@ Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoin
     p.update_grain = 1;
     p.ar_coeff_lag = lag;
     p.overlap_flag = 1;
-    // Chroma scaling indexed by the chroma sample itself: (cb_mult - 128) = 64 selects it,
-    // (cb_luma_mult - 128) = 0 drops the luma average, no offset (AV1 7.18.3.5).
-    p.cb_mult = p.cr_mult = 192;
-    p.cb_luma_mult = p.cr_luma_mult = 128;
+    // Chroma scaling index (AV1 7.18.3.5): (cb_mult - 128) weighs the chroma sample,
+    // (cb_luma_mult - 128) the luma average, in 64ths; no offset.
+    p.cb_mult = 192 - 16 * luma_quarters[1];
+    p.cb_luma_mult = 128 + 16 * luma_quarters[1];
+    p.cr_mult = 192 - 16 * luma_quarters[2];
+    p.cr_luma_mult = 128 + 16 * luma_quarters[2];
     p.cb_offset = p.cr_offset = 256;
     const int shift = choose_ar_shift(coefficients);
     p.ar_coeff_shift_minus_6 = shift - 6;
@@ -202,10 +227,28 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
     const int num_planes = target.chroma == ChromaFormat::k400 ? 1 : 3;
     const int max_points[3] = {14, 10, 10};
     std::array<std::vector<LevelPoint>, 3> points;
+    std::array<int, 3> luma_quarters{};
     for (int c = 0; c < num_planes; c++) {
         auto& rep = e.components[c];
         rep.note = fit_component_curve(obs[c].blocks, target.bit_depth, rep.curve, c > 0);
         if (!rep.note.empty()) continue;
+        if (c > 0) {
+            // Chroma grain often follows the luma (camera noise is set by the light, which
+            // luma carries; libaom's test grain indexes chroma by luma alone): index by the
+            // mix of chroma sample and luma average that explains the blocks' levels best.
+            std::array<LevelCurve, 5> curves;
+            curves[0] = rep.curve;
+            int best = 0;
+            for (int q = 0; q <= 4; q++) {
+                if (q > 0) curves[q] = fit_level_curve(blocks_by_chroma_index(obs[c].blocks, q));
+                rep.spread_by_luma_quarters.push_back(within_sub_range_spread(curves[q]));
+                if (curves[q].valid() && rep.spread_by_luma_quarters[q] < rep.spread_by_luma_quarters[best]) best = q;
+            }
+            if (rep.spread_by_luma_quarters[best] < (1 - kLumaShareMinGain) * rep.spread_by_luma_quarters[0]) {
+                rep.luma_quarters = luma_quarters[c] = best;
+                rep.curve = curves[best];
+            }
+        }
         rep.points = fit_piecewise_linear(rep.curve, max_points[c], target.accuracy);
         rep.error = worst_band_error(rep.curve, evaluate_piecewise_linear(rep.points), &rep.worst_band);
         rep.accurate = rep.error <= target.accuracy;
@@ -284,7 +327,7 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
                 coeffs[c].back() *= sd_innov / (std::sqrt(residual[c]) * sd_luma);
     }
     for (int c = 0; c < num_planes; c++) e.components[c].coefficients = coeffs[c];
-    e.params = av1_params_from_levels(points, lag, coeffs, target);
+    e.params = av1_params_from_levels(points, lag, coeffs, target, luma_quarters);
     long long outside = 0, on_bound = 0, total = 0;
     for (int c = 0; c < num_planes; c++) {
         outside += obs[c].outside_legal;

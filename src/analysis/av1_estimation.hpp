@@ -39,6 +39,11 @@ struct Av1ComponentReport {
     std::vector<double> spectrum_error_by_lag;  // spectrum deviation from the longest lag's model
     double lag_tolerance = 0.0;                 // the deviation accepted (at least the split-half noise)
     int own_lag = 0;                            // the lag this plane alone would choose
+    // Chroma: the scaling index's share of the luma average, in quarters (0: the chroma
+    // sample alone; 4: the luma average alone), and for each share the spread of the blocks'
+    // levels around the curve it indexes (pooled within-sub-range standard deviation).
+    int luma_quarters = 0;
+    std::vector<double> spread_by_luma_quarters;
     std::vector<double> coefficients;     // real-valued AR coefficients at the chosen lag
     std::string note;
 };
@@ -57,9 +62,15 @@ Av1Estimate estimate_av1(const std::array<PlaneObservations, 3>& obs, const Av1T
 
 // Parameters for given level points (sample units) and real AR coefficients per plane
 // (chroma: the luma term last, when luma has grain). Empty points = no grain there.
+// `luma_quarters` per chroma plane: the scaling index's luma share (Av1ComponentReport).
 Av1FilmGrainParams av1_params_from_levels(const std::array<std::vector<LevelPoint>, 3>& points, int lag,
                                           const std::array<std::vector<double>, 3>& coefficients,
-                                          const Av1Target& target);
+                                          const Av1Target& target, const std::array<int, 3>& luma_quarters = {});
+
+// The blocks with intensity8 replaced by the chroma scaling index that gives the luma
+// average `luma_quarters` / 4 of its weight: ((4 - q) * chroma + q * luma) / 4, AV1
+// 7.18.3.5 with cb_mult - 128 = 16 (4 - q), cb_luma_mult - 128 = 16 q, cb_offset 256.
+std::vector<BlockSample> blocks_by_chroma_index(const std::vector<BlockSample>& blocks, int luma_quarters);
 
 // Solves the AR model of one lag from the lag-3 normal equations. Returns the coefficients
 // (AV1 order; the luma term last when `with_luma`) and the residual variance per equation.

@@ -182,7 +182,7 @@ void count_legal_range(const cv::Mat& source, int bit_depth, int legal_min8, int
 }
 
 cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
-                      int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
+                      int bit_depth, const CoLocatedLuma& luma, const ObservationRequest& request,
                       PlaneObservations& out) {
     const int w = source.cols, h = source.rows;
     const double to8 = 1.0 / double(1 << (bit_depth - 8));
@@ -207,8 +207,12 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
         cv::minMaxLoc(source(r), &mn, &mx);
         return mn <= 0 || mx >= maxv;
     };
-    for (const cv::Rect& r : place_flat_blocks(integral, w, h, request.level_block))
-        if (!clipped(r)) out.blocks.push_back({float(cv::mean(denoised(r))[0] * to8), float(detrended_sigma(grain(r), nullptr))});
+    for (const cv::Rect& r : place_flat_blocks(integral, w, h, request.level_block)) {
+        if (clipped(r)) continue;
+        const float intensity8 = float(cv::mean(denoised(r))[0] * to8);
+        out.blocks.push_back({intensity8, float(detrended_sigma(grain(r), nullptr)),
+                              luma.denoised.empty() ? intensity8 : float(cv::mean(luma.denoised(r))[0] * to8)});
+    }
     std::vector<cv::Rect> ar_blocks;
     if (request.ar_equations)
         for (const cv::Rect& r : place_flat_blocks(integral, w, h, kArBlock)) {
@@ -224,7 +228,7 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
         // A regular subset keeps the cost bounded on large pictures.
         const std::size_t step = (ar_blocks.size() + request.max_ar_blocks - 1) / request.max_ar_blocks;
         for (std::size_t i = 0; i < ar_blocks.size(); i += step)
-            accumulate_ar(normalized, luma_normalized, ar_blocks[i], out.ar_halves[request.half & 1]);
+            accumulate_ar(normalized, luma.normalized, ar_blocks[i], out.ar_halves[request.half & 1]);
         out.ar = out.ar_halves[0];
         out.ar.xtx = out.ar_halves[0].xtx + out.ar_halves[1].xtx;
         out.ar.xty = out.ar_halves[0].xty + out.ar_halves[1].xty;

@@ -30,6 +30,9 @@ inline constexpr int kMaxArTerms = 2 * kMaxArLag * (kMaxArLag + 1) + 1;  // + th
 struct BlockSample {
     float intensity8;  // mean of the denoised block, 8-bit scale
     float sigma;       // grain standard deviation after planar trend removal, sample units
+    // Mean of the co-located denoised luma, 8-bit scale (luma: intensity8). AV1 can index a
+    // chroma plane's scaling by a mix of its own sample and the luma average (7.18.3.5).
+    float luma8;
 };
 
 // The causal neighbours of the AV1 AR filter, in the order of AV1 7.18.3.3 for lag 3:
@@ -101,11 +104,16 @@ void merge_observations(PlaneObservations& total, const PlaneObservations& part)
 // Counts `source`'s samples outside legal_min8..legal_max8 (8-bit scale) and on those bounds.
 void count_legal_range(const cv::Mat& source, int bit_depth, int legal_min8, int legal_max8, PlaneObservations& out);
 
-// Adds one plane of one picture. `luma_normalized` (chroma only, may be empty) is the luma
-// grain divided by its block level, resampled to this plane's size.
+// The luma seen by a chroma plane, resampled to its size (empty for luma itself).
+struct CoLocatedLuma {
+    cv::Mat denoised;    // the denoised luma: each block's luma8
+    cv::Mat normalized;  // the luma grain divided by its block level: the AR fit's luma term (may be empty)
+};
+
+// Adds one plane of one picture.
 // Returns this plane's grain divided by its block level (for the chroma planes' luma term).
 cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::Mat& grain, const cv::Mat& usable,
-                      int bit_depth, const cv::Mat& luma_normalized, const ObservationRequest& request,
+                      int bit_depth, const CoLocatedLuma& luma, const ObservationRequest& request,
                       PlaneObservations& out);
 
 // Grain standard deviation of a block after removing its least-squares plane.

@@ -78,7 +78,7 @@ void GrainAnalyzer::analyse(std::size_t wi) {
     req.half = (k / o_.frame_step) & 1;
     PictureObservations picture;
     picture.index = k;
-    cv::Mat luma_normalized;
+    cv::Mat luma_normalized, luma_denoised;
     const bool keep = sample_.index < 0 || (sample_.index < 2 * o_.temporal_radius && k >= 2 * o_.temporal_radius);
     if (keep) sample_.index = k;
     // Luma leads: its global motion and its per-neighbour motion decisions guide the chroma
@@ -127,12 +127,15 @@ void GrainAnalyzer::analyse(std::size_t wi) {
         picture.reliable_samples += nusable;
         // Nothing (or almost nothing) still: measure on the spatial estimate rather than not at all.
         if (nusable < nflat / 10) usable = flat;
-        cv::Mat luma_term;
-        if (p > 0 && req.ar_equations && !luma_normalized.empty())
-            cv::resize(luma_normalized, luma_term, s.size(), 0, 0, cv::INTER_AREA);
+        CoLocatedLuma luma;
+        if (p > 0) {
+            if (req.ar_equations && !luma_normalized.empty())
+                cv::resize(luma_normalized, luma.normalized, s.size(), 0, 0, cv::INTER_AREA);
+            cv::resize(luma_denoised, luma.denoised, s.size(), 0, 0, cv::INTER_AREA);
+        }
         count_legal_range(s, fmt_.bit_depth, 16, p == 0 ? 235 : 240, picture.planes[p]);
-        cv::Mat normalized = observe_plane(s, g.denoised, g.grain, usable, fmt_.bit_depth, luma_term, req, picture.planes[p]);
-        if (p == 0) luma_normalized = normalized;
+        cv::Mat normalized = observe_plane(s, g.denoised, g.grain, usable, fmt_.bit_depth, luma, req, picture.planes[p]);
+        if (p == 0) luma_normalized = normalized, luma_denoised = g.denoised;
         if (keep) {
             sample_.source[p] = s;
             sample_.denoised[p] = g.denoised;

@@ -8,7 +8,7 @@
 namespace filmgrain::analysis {
 namespace {
 
-constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '3'};
+constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '4'};
 
 class Writer {
 public:
@@ -62,6 +62,7 @@ std::vector<uint8_t> serialize_picture_observations(const PictureObservations& p
         for (const BlockSample& b : p.blocks) {
             w.put(b.intensity8);
             w.put(b.sigma);
+            w.put(b.luma8);
         }
         for (int b = 0; b < kPowerBins; b++) {
             w.put<int32_t>(p.dct_blocks[b]);
@@ -98,13 +99,14 @@ PictureObservations deserialize_picture_observations(const uint8_t* data, std::s
     pic.reliable_samples = r.get<int64_t>("reliable_samples");
     for (PlaneObservations& p : pic.planes) {
         const uint64_t n = r.get<uint64_t>("block count");
-        if (n > (r.size - r.pos) / (2 * sizeof(float)))
+        if (n > (r.size - r.pos) / (3 * sizeof(float)))
             throw Error(ErrorCode::kMalformedPayload, "observation record: block count " + std::to_string(n) +
                                                           " exceeds the record's " + std::to_string(r.size) + " bytes");
         p.blocks.resize(n);
         for (BlockSample& b : p.blocks) {
             b.intensity8 = r.get<float>("blocks");
             b.sigma = r.get<float>("blocks");
+            b.luma8 = r.get<float>("blocks");
         }
         for (int b = 0; b < kPowerBins; b++) {
             p.dct_blocks[b] = r.get<int32_t>("dct_blocks");

@@ -306,5 +306,79 @@ TEST(ForeignGrain, Av1ObservesNarrowDarkPatches) {
     EXPECT_NEAR(se / st, 1.0, 0.10);
 }
 
+// Chroma grain std over the chroma samples whose co-located clean luma (4:2:0) or own clean
+// chroma value lies in lo..hi, over the pictures.
+double chroma_std_where(const std::vector<FrameBuffer>& grainy, const std::vector<FrameBuffer>& clean, int p, bool by_luma,
+                        int lo, int hi) {
+    double ss = 0;
+    long long n = 0;
+    for (std::size_t k = 0; k < grainy.size(); k++) {
+        const cv::Mat g = plane_to_float(const_cast<FrameBuffer&>(grainy[k]).view(), p) -
+                          plane_to_float(const_cast<FrameBuffer&>(clean[k]).view(), p);
+        const cv::Mat index = by_luma ? plane_to_float(const_cast<FrameBuffer&>(clean[k]).view(), 0)
+                                      : plane_to_float(const_cast<FrameBuffer&>(clean[k]).view(), p);
+        const int s = by_luma ? 1 : 0;
+        for (int y = 0; y < g.rows; y++)
+            for (int x = 0; x < g.cols; x++) {
+                const float v = index.at<float>(y << s, x << s);
+                if (v < lo || v > hi) continue;
+                ss += double(g.at<float>(y, x)) * g.at<float>(y, x);
+                n++;
+            }
+    }
+    return n ? std::sqrt(ss / double(n)) : 0.0;
+}
+
+// Chroma grain whose level follows the luma (camera noise; libaom's test grain indexes chroma
+// by the luma average): indexed by the chroma value alone, the curve averaged over the luma
+// and the darkest luma patch got twice its chroma grain. The estimate indexes chroma by the
+// luma (cb_luma_mult) and gets each luma band's level; grain that follows the chroma value
+// keeps the chroma index.
+TEST(ForeignGrain, Av1ChromaGrainIndexedByWhatItFollows) {
+    const PixelFormat fmt{ChromaFormat::k420, 8};
+    for (bool follows_luma : {true, false}) {
+        Clip c;
+        for (int k = 0; k < kFrames; k++) {
+            c.clean.push_back(analysis_test::make_clean_picture(kWidth, kHeight, fmt));
+            FrameBuffer g = add_noise(c.clean.back(), {3.0, 0.0, 0.0}, 501 + k);
+            FrameView v = g.view();
+            const cv::Mat luma = plane_to_float(c.clean.back().view(), 0);
+            for (int p = 1; p < 3; p++) {
+                cv::Mat m = plane_to_float(v, p);
+                const cv::Mat own = m.clone();
+                const cv::Mat n = noise_plane(m.size(), 1.0, 0.0, 601 + 7 * k + p);
+                for (int y = 0; y < m.rows; y++)
+                    for (int x = 0; x < m.cols; x++) {
+                        const double t = follows_luma ? (luma.at<float>(2 * y, 2 * x) - 24) / 208.0
+                                                      : (own.at<float>(y, x) - 64) / 128.0;
+                        m.at<float>(y, x) += float((0.5 + 3.0 * t) * n.at<float>(y, x));
+                    }
+                analysis::float_to_plane(m, v, p);
+            }
+            c.grainy.push_back(std::move(g));
+        }
+        const auto est = analyse<analysis::Av1Estimate>(c, GrainModel::kAv1, false);
+        ASSERT_EQ(est.params.apply_grain, 1);
+        const auto resynth = resynthesize_av1(est.params, c.clean);
+        for (int p = 1; p < 3; p++) {
+            const auto& r = est.components[p];
+            ASSERT_TRUE(r.present) << "plane " << p;
+            std::printf("[ measured ] grain following the %s, plane %d: luma share %d/4 (spread by share:", follows_luma ? "luma" : "chroma", p,
+                        r.luma_quarters);
+            for (double x : r.spread_by_luma_quarters) std::printf(" %.3f", x);
+            std::printf(")\n");
+            EXPECT_EQ(r.luma_quarters, follows_luma ? 4 : 0) << "plane " << p;
+            // the two ends of what the grain follows (luma patches 24..70 and 186..232; chroma 64..96 and 160..192)
+            const int bands[2][2] = {{follows_luma ? 24 : 64, follows_luma ? 70 : 96}, {follows_luma ? 186 : 160, follows_luma ? 232 : 192}};
+            for (const auto& b : bands) {
+                const double st = chroma_std_where(c.grainy, c.clean, p, follows_luma, b[0], b[1]),
+                             se = chroma_std_where(resynth, c.clean, p, follows_luma, b[0], b[1]);
+                std::printf("[ measured ]   %s %d..%d: true %.3f, re-synthesized %.3f\n", follows_luma ? "luma" : "chroma", b[0], b[1], st, se);
+                EXPECT_NEAR(se / st, 1.0, 0.10) << "plane " << p << " band " << b[0];
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace filmgrain
