@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <tuple>
@@ -81,7 +82,21 @@ private:
     std::array<std::optional<CutoffModels>, 3> models_;
 };
 
-FgcParams params_from_levels(const std::array<FgcComponentLevels, 3>& levels, const FgcTarget& target, FgcCalibration& cal) {
+int distinct_pairs(const std::vector<std::pair<int, int>>& pairs) {
+    std::vector<std::pair<int, int>> distinct;
+    for (const auto& pr : pairs)
+        if (std::find(distinct.begin(), distinct.end(), pr) == distinct.end()) distinct.push_back(pr);
+    return int(distinct.size());
+}
+
+// What the parameters signal where it departs from the levels asked for.
+struct SignalledCutoffs {
+    std::array<std::vector<std::pair<int, int>>, 3> cutoffs;  // per component and interval
+    std::array<std::string, 3> raised;                        // why a component's cut-offs were raised
+};
+
+FgcParams params_from_levels(const std::array<FgcComponentLevels, 3>& levels, const FgcTarget& target, FgcCalibration& cal,
+                             SignalledCutoffs* signalled = nullptr) {
     const int max_scale = 255 << (target.bit_depth - 8);
     const int num_comp = target.chroma == ChromaFormat::k400 ? 1 : 3;
     struct Item {
@@ -117,6 +132,29 @@ FgcParams params_from_levels(const std::array<FgcComponentLevels, 3>& levels, co
         if (fits) {
             lsf = l;
             break;
+        }
+    }
+    // Strong coarse grain can be out of reach: RDD 5 holds log2_scale_factor to 2..7 and the
+    // value to 255, and a coarse cut-off's template has little amplitude per unit (Boolean
+    // grain 1.2 px wide on chroma came out at cut-offs (2,2) 41 % weak). Such an item takes
+    // the coarsest finer cut-offs that reach its level: grain a little finer shows less than
+    // grain 40 % weak.
+    for (Item& it : items) {
+        const int h0 = it.h, v0 = it.v;
+        const double need = value_for(it, lsf);
+        while (value_for(it, lsf) > max_scale + 0.5 && (it.h < kMaxCutoff || it.v < kMaxCutoff)) {
+            it.h = std::min(it.h + 1, kMaxCutoff);
+            it.v = std::min(it.v + 1, kMaxCutoff);
+        }
+        if (!signalled) continue;
+        signalled->cutoffs[it.c].push_back({it.h, it.v});
+        if ((it.h != h0 || it.v != v0) && signalled->raised[it.c].empty()) {
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "cut-offs raised from (%d,%d) to (%d,%d): there the level %.2f needs comp_model_value %.0f, "
+                          "beyond %d at log2_scale_factor %d",
+                          h0, v0, it.h, it.v, it.level / double(1 << (target.bit_depth - 8)), need, max_scale, lsf);
+            signalled->raised[it.c] = text;
         }
     }
     FgcParams p;
@@ -225,15 +263,20 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
         }
         rep.cutoffs = differs ? own : std::vector<std::pair<int, int>>(rep.intervals.size(),
                                                                        {rep.pooled.horizontal, rep.pooled.vertical});
-        std::vector<std::pair<int, int>> distinct;
-        for (const auto& pr : rep.cutoffs)
-            if (std::find(distinct.begin(), distinct.end(), pr) == distinct.end()) distinct.push_back(pr);
-        rep.cutoff_pairs = int(distinct.size());
+        rep.cutoff_pairs = distinct_pairs(rep.cutoffs);
         rep.present = !rep.intervals.empty();
         levels[c].intervals = rep.intervals;
         levels[c].cutoffs = rep.cutoffs;
     }
-    e.params = params_from_levels(levels, target, cal);
+    SignalledCutoffs signalled;
+    e.params = params_from_levels(levels, target, cal, &signalled);
+    for (int c = 0; c < num_comp; c++) {
+        auto& rep = e.components[c];
+        if (signalled.raised[c].empty()) continue;
+        rep.cutoffs = signalled.cutoffs[c];
+        rep.cutoff_pairs = distinct_pairs(rep.cutoffs);
+        rep.note += (rep.note.empty() ? "" : "; ") + signalled.raised[c];
+    }
     return e;
 }
 

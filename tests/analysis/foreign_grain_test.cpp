@@ -4,8 +4,10 @@
 //  - FGC cut-offs that give the true autocorrelation (mean |r_est - r_true| over lags
 //    (1,0), (0,1), (1,1), (2,0) <= 0.06): a step fit chose them 1-2 steps too coarse;
 //  - strong coarse FGC grain at its level (within 5 %): it saturated at comp_model_value 255;
+//  - strong coarse FGC chroma grain at its level (within 10 %): out of reach at its cut-offs;
 //  - AV1 chroma at its level (within 10 %) when moving coloured texture crosses the picture,
-//    and none (re-synthesized chroma std <= 0.3) when the grain is luma only.
+//    and none (re-synthesized chroma std <= 0.3) when the grain is luma only;
+//  - AV1 chroma scaling indexed by the luma when the chroma grain follows the luma.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -207,6 +209,26 @@ TEST(ForeignGrain, FgcStrongCoarseGrainReachesItsLevel) {
         std::printf("[ measured ] band %d..%d: true %.2f, re-synthesized %.2f (log2_scale_factor %d)\n", lo, lo + 63, so, sr,
                     est.params.log2_scale_factor);
         EXPECT_NEAR(sr / so, 1.0, 0.05) << "band " << lo;
+    }
+}
+
+// Strong coarse chroma grain: at the cut-offs its correlation matches, the level needs a
+// comp_model_value beyond 255 even at RDD 5's smallest log2_scale_factor (2), and the grain
+// came out 40 % weak. The estimate takes finer cut-offs that reach the level, and says so.
+TEST(ForeignGrain, FgcStrongCoarseChromaGrainReachesItsLevel) {
+    const Clip c = make_clip({ChromaFormat::k420, 8}, {4.0, 14.0, 3.0}, false);
+    const auto est = analyse<analysis::FgcEstimate>(c, GrainModel::kFgc, true);
+    const auto resynth = resynthesize_fgc(est.params, c.clean);
+    for (int p = 1; p < 3; p++) {
+        ASSERT_TRUE(est.params.comp[p].comp_model_present_flag) << "plane " << p;
+        const auto& iv = est.params.comp[p].intervals[0];
+        const double st = plane_std(grain_of(c.grainy, c.clean, p)), se = plane_std(grain_of(resynth, c.clean, p));
+        std::printf("[ measured ] plane %d: true std %.2f, re-synthesized %.2f; value %d, cut-offs (%d,%d), "
+                    "log2_scale_factor %d; %s\n",
+                    p, st, se, iv.comp_model_value[0], iv.comp_model_value[1], iv.comp_model_value[2],
+                    est.params.log2_scale_factor, est.components[p].note.c_str());
+        EXPECT_NEAR(se / st, 1.0, 0.10) << "plane " << p;
+        EXPECT_NE(est.components[p].note.find("cut-offs raised"), std::string::npos) << "plane " << p;
     }
 }
 
