@@ -30,6 +30,7 @@
 #include <optional>
 #include <vector>
 
+#include "bitstream/decode_restart.hpp"
 #include "decoded_grain.hpp"
 #include "filmgrain/session.hpp"
 #include "libav/video_decoder.hpp"
@@ -45,7 +46,8 @@ struct DecodeOptions {
     bool strict = false;
     int threads = 0;
     // A range of the output pictures (distributed runs): pictures before it are decoded
-    // but neither synthesized nor written.
+    // from the random access point before the range (bitstream/decode_restart.hpp) but
+    // neither synthesized nor written.
     int first_frame = 0;
     int frame_count = -1;
 };
@@ -98,6 +100,31 @@ private:
 };
 
 // The visible picture of an uncropped decoder picture (libav::DecodedFrame crop fields).
+// The bytes a decoder starting at `r` reads: the IVF header or the parameter sets before it,
+// then the file from the unit on.
+libav::StreamWindow restart_window(const std::string& path, const bitstream::DecodeRestart& r) {
+    libav::StreamWindow w;
+    w.offset = int64_t(r.offset);
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw Error(ErrorCode::kIo, "cannot open '" + path + "'");
+    const auto read_range = [&](std::size_t at, std::size_t size) {
+        const std::size_t old = w.prefix.size();
+        w.prefix.resize(old + size);
+        const bool ok = fseeko(f, off_t(at), SEEK_SET) == 0 && std::fread(w.prefix.data() + old, 1, size, f) == size;
+        if (!ok) {
+            std::fclose(f);
+            throw Error(ErrorCode::kIo, "'" + path + "': cannot read " + std::to_string(size) + " bytes at " + std::to_string(at));
+        }
+    };
+    if (r.ivf_header_bytes) read_range(0, r.ivf_header_bytes);
+    for (const auto& [at, size] : r.parameter_sets) {
+        w.prefix.insert(w.prefix.end(), {0, 0, 0, 1});
+        read_range(at, size);
+    }
+    std::fclose(f);
+    return w;
+}
+
 FrameView conformance_window(const FrameView& coded, const libav::DecodedFrame& f) {
     if (f.crop_left == 0 && f.crop_top == 0 && f.crop_right == 0 && f.crop_bottom == 0) return coded;
     if (f.crop_left < 0 || f.crop_top < 0 || f.crop_right < 0 || f.crop_bottom < 0 ||
@@ -130,8 +157,8 @@ int run_decode(const DecodeOptions& o) {
     // ffmpeg flavour: FFmpeg adds FGC grain to the coded picture and crops after, so partial
     // 8x8 blocks at the right and bottom average coded samples beyond the visible picture.
     const bool grain_before_crop = flavour == FgcFlavour::kFfmpeg && !o.no_grain;
-    libav::VideoDecoder decoder(o.input, o.threads, grain_before_crop);
-    const libav::StreamDescription& d = decoder.description();
+    auto decoder = std::make_unique<libav::VideoDecoder>(o.input, o.threads, grain_before_crop);
+    const libav::StreamDescription d = decoder->description();
 
     // FFmpeg exports each picture's grain already resolved (persistence, AV1 reference
     // slots): every picture hands its own set to the session.
@@ -148,14 +175,34 @@ int run_decode(const DecodeOptions& o) {
         progress.break_line();
         std::fprintf(stderr, "filmgrain: warning: %s\n", text.c_str());
     };
-    // damage is reported even with -q: it is data lost, not progress
-    decoder.on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
-    // only elementary streams the scanner reads can carry AFGS1: no second read of other files
-    const StreamMetadata stream = o.no_grain ? StreamMetadata{} : read_stream_metadata(o.input, d.codec_name, warn);
+    // only elementary streams the scanner reads can carry AFGS1 or be started part-way: no
+    // second read of other files
+    const bool raw_stream = d.format_name == "h264" || d.format_name == "hevc" || d.format_name == "ivf" ||
+                            d.format_name == "obu" || d.format_name == "av1";
+    const StreamMetadata stream = o.no_grain && (o.first_frame == 0 || !raw_stream)
+                                      ? StreamMetadata{}
+                                      : read_stream_metadata(o.input, d.codec_name, warn);
+    // A range decodes from the random access point before it, not from the stream's start.
+    int64_t first_position = 0;
+    if (o.first_frame > 0 && raw_stream)
+        if (const auto restart = bitstream::plan_decode_restart(stream.scan, o.first_frame)) {
+            decoder = std::make_unique<libav::VideoDecoder>(o.input, o.threads, grain_before_crop,
+                                                            restart_window(o.input, *restart));
+            first_position = restart->output_before;
+            if (!o.quiet && o.output != "-")
+                std::fprintf(stderr,
+                             "filmgrain: decoding from access unit %d (a random access point; output picture %lld): the "
+                             "%d unit(s) before it are not decoded\n",
+                             restart->unit, (long long)restart->output_before, restart->unit);
+        }
+    // damage is reported even with -q: it is data lost, not progress (packets count from the
+    // unit decoding starts at)
+    decoder->on_damage([&warn](const libav::DamagedUnit& u) { warn(libav::describe(u)); });
     // Pictures are not copied out of the decoder: the synthesis writes its output frame
     // straight from the decoder's picture (as dav1d does), and pictures without grain are
     // written from the decoder's picture itself.
-    while (decoder.next(frame, /*copy_picture=*/false)) {
+    while (decoder->next(frame, /*copy_picture=*/false)) {
+        frame.index += first_position;
         const FrameView coded_src = frame.decoded, coded_dst = frame.picture.view();
         const FrameView src = conformance_window(coded_src, frame), v = conformance_window(coded_dst, frame);
         if (!writer) {
@@ -180,7 +227,7 @@ int run_decode(const DecodeOptions& o) {
             skipped_frames++;
             continue;
         }
-        const int64_t position = picture_position++;
+        const int64_t position = first_position + picture_position++;
         if (o.frame_count >= 0 && position >= int64_t(o.first_frame) + o.frame_count) break;
         if (position < o.first_frame) continue;
         if (!o.no_grain) take_afgs1_grain(frame, stream.afgs1, src.width, src.height);
@@ -201,7 +248,7 @@ int run_decode(const DecodeOptions& o) {
         n++;
         progress.frame_done(n);
     }
-    const int64_t damaged = decoder.damaged_units() + skipped_frames;
+    const int64_t damaged = decoder->damaged_units() + skipped_frames;
     // a range past the last picture is empty, not an error
     if (n == 0 && (!writer || o.first_frame == 0))
         throw Error(ErrorCode::kIo, "'" + o.input + "' decoded to no frame" +
@@ -252,7 +299,9 @@ void register_decode(CLI::App& app) {
                   "exit with status 3 when the input had damaged units (the output is still written complete); "
                   "without it damage is only warned about");
     sub->add_option("--first-frame", o->first_frame,
-                    "write the output from this picture on (the pictures before it are decoded, not synthesized)")
+                    "write the output from this picture on; an elementary stream (H.264, H.265 Annex B; AV1 IVF, OBU) "
+                    "is decoded from the random access point before it where that gives the same pictures and "
+                    "grain (IDR / key frame; not into a persisting FGC SEI), anything else from its start")
         ->check(CLI::Range(0, 1 << 30));
     sub->add_option("--frames", o->frame_count, "write at most this many pictures (default: all)")
         ->check(CLI::Range(0, 1 << 30));

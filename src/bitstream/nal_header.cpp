@@ -36,6 +36,16 @@ bool is_vcl(NalCodec codec, int t) {
 }
 bool is_sps(NalCodec codec, int t) { return t == (codec == NalCodec::kH264 ? 7 : codec == NalCodec::kH265 ? 33 : 15); }
 bool is_pps(NalCodec codec, int t) { return t == (codec == NalCodec::kH264 ? 8 : codec == NalCodec::kH265 ? 34 : 16); }
+bool is_parameter_set(NalCodec codec, int t) {
+    if (is_sps(codec, t) || is_pps(codec, t)) return true;
+    if (codec == NalCodec::kH265) return t == 32;               // VPS
+    if (codec == NalCodec::kH266) return t == 14 || t == 17 || t == 18;  // VPS, prefix and suffix APS
+    return false;
+}
+bool is_idr(NalCodec codec, int t) {
+    if (codec == NalCodec::kH264) return t == 5;
+    return codec == NalCodec::kH265 ? t == 19 || t == 20 : t == 7 || t == 8;
+}
 bool is_prefix_sei(NalCodec codec, int t) { return t == (codec == NalCodec::kH264 ? 6 : codec == NalCodec::kH265 ? 39 : 23); }
 bool is_suffix_sei(NalCodec codec, int t) { return codec != NalCodec::kH264 && t == (codec == NalCodec::kH265 ? 40 : 24); }
 bool is_end_of_sequence(NalCodec codec, int t) {

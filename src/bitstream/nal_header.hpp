@@ -24,6 +24,11 @@ bool parse_nal_header(NalCodec codec, const uint8_t* nal, std::size_t size, NalH
 bool is_vcl(NalCodec codec, int type);
 bool is_sps(NalCodec codec, int type);
 bool is_pps(NalCodec codec, int type);
+// Every parameter set a later picture may refer to: SPS, PPS, H.265/H.266 VPS, H.266 APS.
+bool is_parameter_set(NalCodec codec, int type);
+// An IDR picture: H.264 nal_unit_type 5, H.265/H.266 IDR_W_RADL and IDR_N_LP. Decoding can
+// start at it: no picture after it in decoding order refers to one before it.
+bool is_idr(NalCodec codec, int type);
 bool is_prefix_sei(NalCodec codec, int type);
 bool is_suffix_sei(NalCodec codec, int type);
 bool is_end_of_sequence(NalCodec codec, int type);

@@ -116,6 +116,7 @@ void NalStreamParser::State::nal_unit(const uint8_t* nal, std::size_t size, std:
         return;
     }
     if (h.layer_id != 0) return;  // base layer only
+    if (is_parameter_set(nc, h.type)) cur.parameter_sets.push_back({offset, size});
     try {
         if (is_sps(nc, h.type)) {
             if (codec == StreamCodec::kH264) h264.parse_sps(rbsp);
@@ -142,6 +143,7 @@ void NalStreamParser::State::nal_unit(const uint8_t* nal, std::size_t size, std:
             }
             cur.pictures++;
             cur.picture_type = nal_type_name(nc, h.type);
+            cur.random_access = cur.pictures == 1 && is_idr(nc, h.type);
             if (codec == StreamCodec::kH264) {
                 const H264PictureOrder o = h264.picture(rbsp);
                 if (o.idr) sequence++;
@@ -196,7 +198,17 @@ AccessUnit Av1StreamParser::push(const Av1TemporalUnit& tu) {
     au.warnings = tu.warnings;
     au.nal_units = int(tu.obus.size());
     for (const Av1Obu& obu : tu.obus) {
-        if (obu.type == kObuFrame || obu.type == kObuFrameHeader) au.pictures++;
+        if (obu.type == kObuFrame || obu.type == kObuFrameHeader) {
+            // A random access point: the unit's first frame is a shown key frame (AV1 5.9.2:
+            // show_existing_frame, frame_type, show_frame lead the uncompressed header), and
+            // the unit carries its sequence header, so a decoder needs nothing before it.
+            if (au.pictures == 0 && au.av1_sequence_header && !obu.payload.empty()) {
+                const uint8_t b = obu.payload[0];
+                au.random_access = au.av1_sequence_header->reduced_still_picture_header ||
+                                   (!(b & 0x80) && ((b >> 5) & 3) == 0 && (b & 0x10));
+            }
+            au.pictures++;
+        }
         if (obu.type == kObuSequenceHeader) {
             try {
                 au.av1_sequence_header = parse_av1_sequence_header(obu.payload);

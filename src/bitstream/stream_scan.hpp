@@ -60,6 +60,11 @@ struct AccessUnit {
     std::optional<int64_t> pts;  // AV1 IVF timestamp
     int nal_units = 0;        // NAL units, or OBUs for AV1
     int pictures = 0;         // VCL NAL units starting a picture, or frame/frame-header OBUs
+    // Decoding can start here (is_idr; AV1: a temporal unit that carries a sequence header
+    // and shows a key frame it codes), and what a decoder starting later needs of this unit:
+    // its H.26x parameter set NAL units, as (file offset after the start code, size).
+    bool random_access = false;
+    std::vector<std::pair<std::size_t, std::size_t>> parameter_sets;
     std::vector<FoundFgc> fgc;
     std::vector<FoundT35> t35;
     std::optional<Av1SequenceHeader> av1_sequence_header;  // AV1: the last one in this unit

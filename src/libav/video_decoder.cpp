@@ -154,6 +154,7 @@ std::string describe(const DamagedUnit& d) {
 }
 
 struct VideoDecoder::State {
+    std::unique_ptr<StreamWindowReader> window;  // outlives fmt, whose custom I/O it is
     AVFormatContext* fmt = nullptr;
     AVCodecContext* ctx = nullptr;
     AVPacket* pkt = nullptr;
@@ -269,11 +270,20 @@ void VideoDecoder::State::feed() {
     }
 }
 
-VideoDecoder::VideoDecoder(const std::string& path, int threads, bool uncropped) : s_(std::make_unique<State>()) {
+VideoDecoder::VideoDecoder(const std::string& path, int threads, bool uncropped, std::optional<StreamWindow> window)
+    : s_(std::make_unique<State>()) {
     av_log_set_level(AV_LOG_ERROR);
     av_log_set_callback(capture_log);
     take_log();
     s_->path = path;
+    if (window) {
+        s_->window = std::make_unique<StreamWindowReader>(path, std::move(*window));
+        s_->fmt = avformat_alloc_context();
+        if (!s_->fmt) throw Error(ErrorCode::kOutOfMemory, "avformat_alloc_context failed");
+        s_->fmt->pb = s_->window->io();
+        s_->fmt->flags |= AVFMT_FLAG_CUSTOM_IO;
+    }
+    // the name still guides probing by its extension when the input is a window
     int err = avformat_open_input(&s_->fmt, path.c_str(), nullptr, nullptr);
     if (err < 0) throw Error(ErrorCode::kIo, "cannot open '" + path + "': " + av_error_report(err));
     // As ffmpeg does, a probe that fails on damaged first packets is not the end when the
@@ -313,6 +323,7 @@ VideoDecoder::VideoDecoder(const std::string& path, int threads, bool uncropped)
 
     desc_.codec_name = avcodec_get_name(st->codecpar->codec_id);
     desc_.decoder_name = codec->name;
+    desc_.format_name = s_->fmt->iformat ? s_->fmt->iformat->name : "";
     desc_.width = st->codecpar->width;
     desc_.height = st->codecpar->height;
     AVRational rate = st->avg_frame_rate.num > 0 ? st->avg_frame_rate : st->r_frame_rate;

@@ -18,6 +18,7 @@
 #include "core/frame_buffer.hpp"
 #include "filmgrain/av1_params.hpp"
 #include "filmgrain/fgc_params.hpp"
+#include "libav/stream_window.hpp"
 
 namespace filmgrain::libav {
 
@@ -73,6 +74,7 @@ std::string describe(const DamagedUnit& d);
 
 struct StreamDescription {
     std::string codec_name, decoder_name;
+    std::string format_name;  // libavformat's demuxer ("hevc", "ivf", "mov,mp4,...")
     int width = 0, height = 0;
     int fps_num = 25, fps_den = 1;
     int64_t frames_estimate = 0;  // 0 when the container does not tell
@@ -84,7 +86,10 @@ public:
     // automatic choice, every core). Throws Error(kIo / kUnsupported).
     // uncropped: output the coded picture and give the conformance window apart
     // (AVCodecContext::apply_cropping = 0), for grain added before the crop as FFmpeg does.
-    explicit VideoDecoder(const std::string& path, int threads = 0, bool uncropped = false);
+    // window: decode a window of the file instead (stream_window.hpp); pictures are indexed
+    // from the window's first.
+    explicit VideoDecoder(const std::string& path, int threads = 0, bool uncropped = false,
+                          std::optional<StreamWindow> window = std::nullopt);
     ~VideoDecoder();
     VideoDecoder(const VideoDecoder&) = delete;
     VideoDecoder& operator=(const VideoDecoder&) = delete;

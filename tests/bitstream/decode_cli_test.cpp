@@ -148,3 +148,70 @@ TEST(DecodeCli, MissingInputIsAnErrorWithoutOutput) {
     EXPECT_FALSE(fs::exists(dir / "out.yuv"));
     fs::remove_all(dir);
 }
+
+// `decode --first-frame F --frames N` (a distributed range) decodes from the random access
+// point before F instead of the stream's start, and gives the full decode's pictures F..F+N-1
+// byte for byte: H.265 and H.264 with B-frames (x265 IDR every 8, x264 every 6) and a new
+// FGC SEI in every access unit; AV1 with a key frame every 6. An FGC SEI that persists into
+// the IDR (libavcodec keeps it) makes the range decode from the start.
+namespace {
+
+void expect_ranges_equal_full_decode(const fs::path& dir, const fs::path& stream, std::size_t frame_bytes, int frames,
+                                     const std::vector<std::pair<int, int>>& ranges_and_restart) {
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q --threads 1 " + q(stream) + " -o " + q(dir / "full.yuv")));
+    const auto full = read_bytes(dir / "full.yuv");
+    ASSERT_EQ(full.size(), std::size_t(frames) * frame_bytes);
+    for (const auto& [first, restart] : ranges_and_restart) {
+        SCOPED_TRACE("first frame " + std::to_string(first));
+        ASSERT_TRUE(run_or_fail("(" + tool() + " decode --threads 1 --first-frame " + std::to_string(first) +
+                                " --frames 5 " + q(stream) + " -o " + q(dir / "part.yuv") + " 2> " + q(dir / "log.txt") + ")"));
+        const auto part = read_bytes(dir / "part.yuv");
+        const std::size_t n = std::min<std::size_t>(5, std::size_t(frames - first));
+        ASSERT_EQ(part.size(), n * frame_bytes);
+        EXPECT_TRUE(std::equal(part.begin(), part.end(), full.begin() + long(first * frame_bytes)));
+        const auto log = read_bytes(dir / "log.txt");
+        const std::string text(log.begin(), log.end());
+        if (restart > 0)
+            EXPECT_NE(text.find("decoding from access unit " + std::to_string(restart) + " "), std::string::npos) << text;
+        else
+            EXPECT_EQ(text.find("decoding from access unit"), std::string::npos) << text;
+    }
+}
+
+}  // namespace
+
+TEST(DecodeRanges, StartAtTheRandomAccessPointBeforeThem) {
+    const fs::path dir = fresh_test_dir("decode-ranges");
+    const std::size_t frame_bytes = 160 * 128 * 3 / 2;
+    {
+        SCOPED_TRACE("h265");
+        const auto raw = encode_synthetic_clip(dir, StreamCodec::kH265, 160, 128, 24, 8);
+        ASSERT_FALSE(raw.empty());
+        write_bytes(dir / "fgc.hevc", with_fgc_sei_per_access_unit(raw, StreamCodec::kH265));
+        expect_ranges_equal_full_decode(dir, dir / "fgc.hevc", frame_bytes, 24, {{3, 0}, {8, 8}, {13, 8}, {22, 16}});
+        // one persistent SEI before the first picture only: in force at every IDR
+        FgcParams p = fgc_params_for(0);
+        p.film_grain_characteristics_persistence_flag = true;
+        write_bytes(dir / "persistent.hevc", insert_sei(raw, StreamCodec::kH265, [&](int au) {
+                        AccessUnitSei s;
+                        if (au == 0) s.prefix = {SeiMessage{kSeiPayloadFgc, write_fgc_sei_payload(p, FgcCodec::kHevc)}};
+                        return s;
+                    }));
+        expect_ranges_equal_full_decode(dir, dir / "persistent.hevc", frame_bytes, 24, {{13, 0}});
+    }
+    {
+        SCOPED_TRACE("h264");
+        const auto raw = encode_synthetic_clip(dir, StreamCodec::kH264, 160, 128, 24, 8);
+        ASSERT_FALSE(raw.empty());
+        write_bytes(dir / "fgc.264", with_fgc_sei_per_access_unit(raw, StreamCodec::kH264));
+        expect_ranges_equal_full_decode(dir, dir / "fgc.264", frame_bytes, 24, {{6, 6}, {17, 12}});
+    }
+    {
+        SCOPED_TRACE("av1");
+        write_synthetic_y4m(dir / "src.y4m", 160, 128, 16, 8);
+        ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=16 --cpu-used=8 --kf-min-dist=6 --kf-max-dist=6 "
+                                "--film-grain-test=3 -o " + q(dir / "g.ivf") + " " + q(dir / "src.y4m")));
+        expect_ranges_equal_full_decode(dir, dir / "g.ivf", frame_bytes, 16, {{4, 0}, {6, 6}, {14, 12}});
+    }
+    fs::remove_all(dir);
+}

@@ -89,6 +89,11 @@ TEST(EncodedStreams, H265ClosedGopIdrWithBFramesAndPrefixSuffixSei) {
                                             "--no-open-gop");
     EXPECT_EQ(scan.units[0].picture_type.substr(0, 3), "IDR");
     EXPECT_EQ(scan.units[8].picture_type.substr(0, 3), "IDR");
+    // the IDRs are the random access points; x265 sends VPS, SPS and PPS once, before the first
+    for (const AccessUnit& u : scan.units) {
+        EXPECT_EQ(u.random_access, u.index % 8 == 0) << u.index;
+        EXPECT_EQ(u.parameter_sets.size(), u.index == 0 ? 3u : 0u) << u.index;
+    }
     expect_every_payload_in_its_unit(scan, StreamCodec::kH265);
     expect_output_order_pocs(scan, 8, 1, true);
     fs::remove_all(dir);
@@ -100,7 +105,11 @@ TEST(EncodedStreams, H265OpenGopCraKeepsCountingPoc) {
                                             "--preset ultrafast --bframes 3 --keyint 8 --min-keyint 8 --no-scenecut "
                                             "--open-gop");
     bool saw_cra = false;
-    for (const auto& u : scan.units) saw_cra = saw_cra || u.picture_type == "CRA_NUT";
+    for (const auto& u : scan.units) {
+        saw_cra = saw_cra || u.picture_type == "CRA_NUT";
+        // a CRA's leading pictures may refer to pictures before it: no restart there
+        if (u.picture_type == "CRA_NUT") EXPECT_FALSE(u.random_access) << u.index;
+    }
     EXPECT_TRUE(saw_cra);
     expect_every_payload_in_its_unit(scan, StreamCodec::kH265);
     expect_output_order_pocs(scan, 8, 1, false);
@@ -115,6 +124,11 @@ TEST(EncodedStreams, H264PocType0WithBFrames) {
     expect_every_payload_in_its_unit(scan, StreamCodec::kH264);
     // x264 counts POC in fields: 2 per frame
     expect_output_order_pocs(scan, 8, 2, true);
+    // an IDR every 8 units, each with its SPS and PPS (x264 repeats them)
+    for (const AccessUnit& u : scan.units) {
+        EXPECT_EQ(u.random_access, u.index % 8 == 0) << u.index;
+        EXPECT_EQ(u.parameter_sets.size(), u.index % 8 == 0 ? 2u : 0u) << u.index;
+    }
     for (const auto& u : scan.units) EXPECT_TRUE(u.idr_pic_id.has_value());
     fs::remove_all(dir);
 }
@@ -162,6 +176,8 @@ TEST(EncodedStreams, AomencStreamWithT35MetadataObus) {
     for (const AccessUnit& u : scan.units) {
         EXPECT_TRUE(u.warnings.empty());
         EXPECT_GE(u.pictures, 1);
+        // only the first temporal unit shows a key frame, with the sequence header
+        EXPECT_EQ(u.random_access, u.index == 0) << u.index;
         ASSERT_EQ(u.t35.size(), 1u);
         EXPECT_TRUE(is_afgs1_t35(u.t35[0].t35));
         EXPECT_EQ(u.t35[0].t35.bytes[3], u.index);

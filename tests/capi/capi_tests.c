@@ -517,7 +517,12 @@ static void run_job(job* j) {
         fg_frame_info info;
         fg_frame_info_init(&info);
         info.ids.poc = 2 * k;
-        j->sums[k] = fg_context_apply(ctx, &src.frame, &dst.frame, &info) == FG_OK ? frame_checksum(&dst.frame) : 0;
+        /* a failure says why (a context or pool that could not be made on a loaded machine
+           is not a wrong picture) */
+        const fg_status st = ctx ? fg_context_apply(ctx, &src.frame, &dst.frame, &info) : FG_ERROR_OUT_OF_MEMORY;
+        if (st != FG_OK)
+            fprintf(stderr, "%s frame %d: %s: %s\n", j->model, k, fg_status_name(st), ctx ? fg_last_error(ctx) : "no context");
+        j->sums[k] = st == FG_OK ? frame_checksum(&dst.frame) : 0;
     }
     frame_free(&src);
     frame_free(&dst);

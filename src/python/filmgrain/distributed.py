@@ -10,9 +10,11 @@ analyze_job, which take the subcommand's argument list and a dask.distributed Cl
 - apply: ranges of pictures are tasks. Y4M / raw YUV input with parameter files: a range
   starts in the state the stream has there, found by following the metadata of the pictures
   before it (Session.skip_picture), not by synthesizing them. A coded stream (.265, .264,
-  .ivf, .obu, ...) goes through ``filmgrain decode``: each range decodes the stream from its
-  start (a decoder must) and synthesizes and writes its own pictures only. Either way the
-  output equals ``filmgrain apply`` / ``decode`` byte for byte, whatever the split.
+  .ivf, .obu, ...) goes through ``filmgrain decode --first-frame --frames``: each range
+  decodes from the random access point before it (an IDR or key frame the metadata scan
+  shows is safe to start at; other containers from the stream's start) and synthesizes and
+  writes its own pictures only. Either way the output equals ``filmgrain apply`` /
+  ``decode`` byte for byte, whatever the split.
 - analyze: ranges of pictures are tasks, each reading the temporal neighbours beyond its ends;
   every analysed picture's observations come back and are fitted once in picture order:
   the same observations and sums, so the same parameters as ``filmgrain analyze``.
