@@ -22,16 +22,15 @@ struct ExportedFgcState {
 
 }  // namespace
 
-std::optional<DecodeRestart> plan_decode_restart(const StreamScan& scan, int64_t first_output) {
-    if (!scan.warnings.empty() || scan.codec == StreamCodec::kH266) return std::nullopt;  // FFmpeg 5.1 has no H.266
+std::vector<DecodeRestart> decode_restart_points(const StreamScan& scan, int64_t last_output) {
+    std::vector<DecodeRestart> points;
+    if (!scan.warnings.empty() || scan.codec == StreamCodec::kH266) return points;  // FFmpeg 5.1 has no H.266
     const bool av1 = scan.codec == StreamCodec::kAv1;
-    if (av1 && scan.container != "ivf" && scan.container != "obu" && scan.container != "annexb-av1") return std::nullopt;
-    std::optional<DecodeRestart> best;
+    if (av1 && scan.container != "ivf" && scan.container != "obu" && scan.container != "annexb-av1") return points;
     ExportedFgcState fgc;
     int64_t outputs = 0;
-    std::vector<std::pair<std::size_t, std::size_t>> parameter_sets;
     for (const AccessUnit& au : scan.units) {
-        if (outputs > first_output || !au.warnings.empty()) break;
+        if (outputs > last_output || !au.warnings.empty()) break;
         bool own_fgc = false;
         for (const FoundFgc& f : au.fgc) own_fgc |= f.params && !f.suffix;
         if (au.index > 0 && au.random_access && (av1 || own_fgc || !fgc.present)) {
@@ -39,15 +38,23 @@ std::optional<DecodeRestart> plan_decode_restart(const StreamScan& scan, int64_t
             r.unit = au.index;
             r.output_before = outputs;
             r.offset = au.offset;
-            if (!av1) r.parameter_sets = parameter_sets;
-            best = std::move(r);
+            if (scan.container == "ivf") r.ivf_header_bytes = scan.units.front().offset;  // frames follow the header
+            points.push_back(std::move(r));
         }
         if (!av1) fgc.unit(au, scan.codec);
-        parameter_sets.insert(parameter_sets.end(), au.parameter_sets.begin(), au.parameter_sets.end());
         if (au.pictures > 0 && au.output) outputs++;
     }
-    if (best && scan.container == "ivf") best->ivf_header_bytes = scan.units.front().offset;  // frames follow the header
-    return best;
+    return points;
+}
+
+std::optional<DecodeRestart> plan_decode_restart(const StreamScan& scan, int64_t first_output) {
+    std::vector<DecodeRestart> points = decode_restart_points(scan, first_output);
+    if (points.empty()) return std::nullopt;
+    DecodeRestart r = std::move(points.back());
+    for (int i = 0; i < r.unit; i++)
+        r.parameter_sets.insert(r.parameter_sets.end(), scan.units[std::size_t(i)].parameter_sets.begin(),
+                                scan.units[std::size_t(i)].parameter_sets.end());
+    return r;
 }
 
 }  // namespace filmgrain::bitstream

@@ -13,6 +13,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -31,9 +32,13 @@ struct DecodeRestart {
     std::size_t offset = 0;     // then the file from here (the unit's first byte)
 };
 
+// Every restart point past the start whose first output picture is at or before
+// `last_output`, in stream order (without their parameter sets); none past damaged units (a
+// decoder may drop their pictures, so that the counts would not hold).
+std::vector<DecodeRestart> decode_restart_points(const StreamScan& scan, int64_t last_output = std::numeric_limits<int64_t>::max());
+
 // The latest restart point whose first output picture is at or before `first_output`;
-// nullopt when there is none past the start (or the stream has damaged units before it,
-// whose pictures a decoder may drop, so that the counts would not hold).
+// nullopt when there is none past the start.
 std::optional<DecodeRestart> plan_decode_restart(const StreamScan& scan, int64_t first_output);
 
 }  // namespace filmgrain::bitstream

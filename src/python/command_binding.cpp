@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apply_job.hpp"
+#include "bitstream/decode_restart.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "command_line.hpp"
 #include "core/float_plane.hpp"
@@ -131,6 +132,15 @@ void register_commands(py::module_& m) {
         for (const bitstream::AccessUnit& u : scan.units) n += u.output && u.pictures > 0;
         return n;
     }, "path"_a, "Pictures in output order of an H.264 / H.265 / H.266 / AV1 elementary stream (a metadata scan).");
+
+    m.def("stream_restart_points", [](const std::string& path) {
+        py::gil_scoped_release release;
+        std::vector<int64_t> points;
+        for (const bitstream::DecodeRestart& r : bitstream::decode_restart_points(bitstream::scan_stream_file(path, std::nullopt)))
+            points.push_back(r.output_before);
+        return points;
+    }, "path"_a, "Output pictures `filmgrain decode --first-frame` can start decoding at (not at the stream's start), "
+                 "ascending: its random access points that give what decoding from the start gives.");
 
     m.def("stats_files", [](const std::vector<std::string>& args) {
         const cli::StatsOptions o = cli::parse_subcommand_arguments<cli::StatsOptions>("stats", cli::add_stats_options, args);

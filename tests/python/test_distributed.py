@@ -228,3 +228,18 @@ def test_command_line(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "filmgrain.distributed", "render", "--workers", "1", str(src), "-o",
                           str(tmp_path / "x.y4m"), "--radius", "-1"], env=env, capture_output=True, text=True)
     assert bad.returncode == 2 and "radius" in bad.stderr and not (tmp_path / "x.y4m").exists()
+
+
+def test_stream_ranges_begin_at_restart_points(hevc_stream):
+    # the fixture's IDR at 30 brings its own FGC SEI: decoding can begin there
+    assert filmgrain._filmgrain.stream_restart_points(str(hevc_stream)) == [30]
+    assert distributed._stream_ranges(60, 7, [30]) == [(0, 30), (30, 60)]
+    assert distributed._stream_ranges(60, 40, [30]) == [(0, 60)]
+    assert distributed._stream_ranges(90, 20, [30, 60]) == [(0, 30), (30, 60), (60, 90)]
+    assert distributed._stream_ranges(20, 7, []) == [(0, 7), (7, 14), (14, 20)]
+
+
+def test_apply_hevc_stream_default_ranges_equal_decode(client, tmp_path, hevc_stream):
+    distributed.apply_job([str(hevc_stream), "-o", str(tmp_path / "dist.y4m"), "--threads", "1"], client)
+    run_tool("decode", str(hevc_stream), "-o", str(tmp_path / "cli.y4m"), "--threads", "1", "-q")
+    assert (tmp_path / "dist.y4m").read_bytes() == (tmp_path / "cli.y4m").read_bytes()

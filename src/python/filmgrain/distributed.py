@@ -10,10 +10,11 @@ analyze_job, which take the subcommand's argument list and a dask.distributed Cl
 - apply: ranges of pictures are tasks. Y4M / raw YUV input with parameter files: a range
   starts in the state the stream has there, found by following the metadata of the pictures
   before it (Session.skip_picture), not by synthesizing them. A coded stream (.265, .264,
-  .ivf, .obu, ...) goes through ``filmgrain decode --first-frame --frames``: each range
-  decodes from the random access point before it (an IDR or key frame the metadata scan
-  shows is safe to start at; other containers from the stream's start) and synthesizes and
-  writes its own pictures only. Either way the output equals ``filmgrain apply`` /
+  .ivf, .obu, ...) goes through ``filmgrain decode --first-frame --frames``, which decodes a
+  range from the random access point before it (an IDR or key frame the metadata scan shows
+  is safe to start at; the stream's start where there is none). By default the ranges begin
+  at those points, so that each decodes only what it writes; frames_per_task cuts them
+  exactly there instead. Either way the output equals ``filmgrain apply`` /
   ``decode`` byte for byte, whatever the split.
 - analyze: ranges of pictures are tasks, each reading the temporal neighbours beyond its ends;
   every analysed picture's observations come back and are fitted once in picture order:
@@ -194,6 +195,20 @@ def _ranges(count: int, per_task: int) -> list:
     return [(a, min(count, a + per_task)) for a in range(0, count, per_task)]
 
 
+def _stream_ranges(count: int, per_task: int, restarts: Sequence[int]) -> list:
+    """Ranges of at least per_task pictures that begin where decoding can begin (the
+    stream's start or a restart point), so that no range decodes pictures it does not
+    write. Without restart points, ranges of per_task (each decodes from the start)."""
+    if not restarts:
+        return _ranges(count, per_task)
+    starts, a = [0], 0
+    for r in restarts:
+        if r >= a + per_task and r < count:
+            starts.append(r)
+            a = r
+    return list(zip(starts, starts[1:] + [count]))
+
+
 def apply_job(args: Sequence[str], client: Any, *, frames_per_task: int = 0, progress: bool = False,
               workers_hint: int = 2) -> None:
     """``filmgrain apply`` (args: -i INPUT -o OUTPUT options) or, when the first argument is a
@@ -207,8 +222,11 @@ def apply_job(args: Sequence[str], client: Any, *, frames_per_task: int = 0, pro
             count = int(_filmgrain.stream_picture_count(args[0]))
             if count == 0:
                 raise ValueError(f"'{args[0]}' holds no picture the stream scanner sees")
+            # frames_per_task given: ranges of exactly that many pictures (each decoding from
+            # the restart point before it); by default, ranges that begin at restart points
             per = frames_per_task or max(1, -(-count // (4 * workers_hint)))
-            ranges = _ranges(count, per)
+            ranges = _ranges(count, per) if frames_per_task else \
+                _stream_ranges(count, per, _filmgrain.stream_restart_points(args[0]))
             futures = [client.submit(_decode_range_task, args, a, b, os.path.join(parts, f"{a:09d}.yuv"), pure=False)
                        for a, b in ranges]
             _gather_in_order(client, futures, _Progress("decode", len(futures), progress))
@@ -320,7 +338,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     where.add_argument("--workers", type=int, default=0, help="a local cluster of N worker processes")
     where.add_argument("--scheduler", help="an existing Dask scheduler, tcp://HOST:PORT")
     parser.add_argument("--tile", type=int, default=0, help="render: tile size in output pixels")
-    parser.add_argument("--frames-per-task", type=int, default=0, help="apply, analyze: pictures per task")
+    parser.add_argument("--frames-per-task", type=int, default=0,
+                        help="apply, analyze: pictures per task (default: a quarter of the pictures per worker; "
+                             "a coded stream's default ranges begin at its random access points)")
     parser.add_argument("--no-progress", action="store_true", help="no progress line on stderr")
     known, rest = parser.parse_known_args(argv)
     if known.workers < 0:
