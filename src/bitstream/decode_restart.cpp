@@ -51,7 +51,8 @@ std::optional<DecodeRestart> plan_decode_restart(const StreamScan& scan, int64_t
     std::vector<DecodeRestart> points = decode_restart_points(scan, first_output);
     if (points.empty()) return std::nullopt;
     DecodeRestart r = std::move(points.back());
-    for (int i = 0; i < r.unit; i++)
+    // AV1's sequence header travels in the restart unit itself (random_access requires it)
+    for (int i = 0; i < r.unit && scan.codec != StreamCodec::kAv1; i++)
         r.parameter_sets.insert(r.parameter_sets.end(), scan.units[std::size_t(i)].parameter_sets.begin(),
                                 scan.units[std::size_t(i)].parameter_sets.end());
     return r;
