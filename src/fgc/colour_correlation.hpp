@@ -26,7 +26,12 @@ struct PreviousGrain {
 
 // Adds the term to `rows` rows of grain (`stride` apart) starting at picture row y0, for
 // the `width` samples of each row; rho holds each sample's p1 (0: none) at the same layout.
+// The reference form reads every co-located sample through the edge clamp; the other is the
+// same per subsampling, with the clamp only where the co-located samples cross the previous
+// plane's last column or row (tested equal on random grain, colour_correlation_test).
 void add_colour_correlation(const PreviousGrain& previous, int log2_scale_factor, int y0, int rows, int width,
                             int32_t* grain, const int16_t* rho, int stride);
+void add_colour_correlation_reference(const PreviousGrain& previous, int log2_scale_factor, int y0, int rows, int width,
+                                      int32_t* grain, const int16_t* rho, int stride);
 
 }  // namespace filmgrain::fgc
