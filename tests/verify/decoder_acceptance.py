@@ -10,6 +10,10 @@
    identical pictures on that stream (checked byte for byte, and printed).
 3. A decoder that dropped pictures: the missing ones are named and the rest stays aligned.
 4. dav1d --filmgrain 0 (grain not applied) is diagnosed as such.
+5. A real decoder whose grain no known mistake describes: Debian 12's FFmpeg 5.1 applies
+   H.274 grain itself (its early h274 synthesis: the same level, other noise). verify must
+   not claim a diagnosis: every picture mismatching, no mistake reproducing any, and the
+   line saying that no known mistake explains it.
 
 usage: decoder_acceptance.py FILMGRAIN SOURCE_DIR WORK_DIR FILMGRAIN_FGC_SEI_STREAM
 """
@@ -193,6 +197,16 @@ expect(missing == list(range(len(frames) - 3, len(frames))), f"the last 3 pictur
 run(["dav1d", "-q", "--filmgrain", "0", "-i", av1_8bit[0], "-o", "nograin.y4m"], check=0)
 rc, r = verify_json(av1_8bit[0], "nograin.y4m")
 expect(rc == 1 and r["diagnosis"][0]["id"] == "grain_not_applied", "dav1d --filmgrain 0 diagnosed as grain not applied")
+
+# ---- 5. a decoder no known mistake describes ---------------------------------------------
+ff_stream = os.path.join(CONF, "ffmpeg71-350x198-420p8", "stream.hevc")
+run(["ffmpeg", "-v", "error", "-y", "-i", ff_stream, "-f", "yuv4mpegpipe", "-pix_fmt", "yuv420p", "ffmpeg51.y4m"], check=0)
+p = run([TOOL, "verify", ff_stream, "--decoded", "ffmpeg51.y4m", "--json", "ffmpeg51.json", "-q"])
+r = json.load(open("ffmpeg51.json"))
+expect(p.returncode == 1 and r["summary"]["exact"] == 0, f"FFmpeg 5.1's own grain mismatches (rc {p.returncode})")
+expect(all(d["frames_exact"] == 0 for d in r["diagnosis"]), "no known mistake reproduces FFmpeg 5.1's grain")
+expect("no known mistake explains it" in p.stdout + p.stderr, "the summary says no known mistake explains it: " +
+       (p.stdout + p.stderr).strip()[-300:])
 
 if failures:
     print(f"{len(failures)} failure(s)")
