@@ -163,7 +163,24 @@ VideoWriter::VideoWriter(const std::string& path, const VideoInfo& info, bool y4
     }
 }
 
+namespace {
+
+// A clip holds one size and format: a picture of another would write bytes a reader splits
+// into the wrong pictures.
+void check_frame_fits(const std::string& path, const VideoInfo& info, int width, int height, PixelFormat format) {
+    if (width == info.width && height == info.height && format.chroma == info.format.chroma &&
+        format.bit_depth == info.format.bit_depth)
+        return;
+    throw Error(ErrorCode::kInvalidArgument, "a " + std::to_string(width) + "x" + std::to_string(height) + " " +
+                                                 pix_fmt_name(format) + " picture for '" + path + "', which holds " +
+                                                 std::to_string(info.width) + "x" + std::to_string(info.height) + " " +
+                                                 pix_fmt_name(info.format));
+}
+
+}  // namespace
+
 void VideoWriter::write(const FrameBuffer& frame) {
+    check_frame_fits(out_.path(), info_, frame.width(), frame.height(), frame.format());
     if (y4m_) std::fwrite("FRAME\n", 1, 6, f_);
     bool ok;
     if (std::endian::native == std::endian::big && frame.format().bit_depth > 8) {
@@ -177,6 +194,7 @@ void VideoWriter::write(const FrameBuffer& frame) {
 }
 
 void VideoWriter::write(const FrameView& frame) {
+    check_frame_fits(out_.path(), info_, frame.width, frame.height, PixelFormat{frame.format, frame.bit_depth});
     const int bps = frame.bytes_per_sample();
     if (std::endian::native == std::endian::big && bps > 1) {
         FrameBuffer packed(frame.width, frame.height, PixelFormat{frame.format, frame.bit_depth});

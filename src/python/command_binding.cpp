@@ -62,6 +62,17 @@ py::list frame_planes(const FrameBuffer& fb) {
 void register_video_files(py::module_& m) {
     using namespace pybind11::literals;
     py::class_<VideoInfo>(m, "VideoInfo", "Size, format and rate of a Y4M / raw YUV clip.")
+        .def(py::init([](int width, int height, const std::string& pix_fmt, const std::string& fps, bool y4m) {
+                 cli::RawVideoOptions r;
+                 r.size = std::to_string(width) + "x" + std::to_string(height);
+                 r.pix_fmt = pix_fmt;
+                 r.fps = fps;
+                 VideoInfo info = r.to_info();
+                 info.y4m = y4m;
+                 return info;
+             }),
+             "width"_a, "height"_a, "pix_fmt"_a = "yuv420p", "fps"_a = "25", "y4m"_a = true,
+             "A clip's size, pix_fmt (yuv420p, yuv422p10le, gray, ...) and rate (\"25\", \"24000/1001\").")
         .def_readonly("width", &VideoInfo::width)
         .def_readonly("height", &VideoInfo::height)
         .def_property_readonly("pix_fmt", [](const VideoInfo& i) { return pix_fmt_name(i.format); })

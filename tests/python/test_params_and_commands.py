@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import filmgrain
-from conftest import Case, run_tool
+from conftest import CONFORMANCE, Case, run_tool
 
 
 def test_fgc_sei_round_trip():
@@ -86,3 +86,56 @@ def test_analyze_equals_cli(tmp_path):
     run_tool("analyze", str(grainy), "--model", "av1", "-o", str(tmp_path / "cli.json"), "--size", "176x144",
              "--spatial", "-q")
     assert got == json.loads((tmp_path / "cli.json").read_text())
+
+
+@pytest.mark.skipif(not filmgrain._filmgrain.have_analysis, reason="built without OpenCV")
+@pytest.mark.parametrize("pix_fmt, depth", [("yuv420p", 8), ("yuv422p10le", 10), ("gray", 8)])
+def test_analyze_pictures_in_memory_equal_cli_on_the_file(tmp_path, pix_fmt, depth):
+    # grain from the library itself on a smooth picture, read back as numpy planes: the
+    # pictures analysed from memory give what `filmgrain analyze` gives on their file
+    w, h, frames = 192, 128, 6
+    yy, xx = np.mgrid[0:h, 0:w]
+    scale = 1 << (depth - 8)
+    clean = tmp_path / "clean.y4m"
+    info = filmgrain.VideoInfo(w, h, pix_fmt)
+    writer = filmgrain.VideoWriter(str(clean), info, True)
+    dtype = np.uint8 if depth == 8 else np.uint16
+    for k in range(frames):
+        y = ((40 + 150 * xx / w + 10 * np.sin(yy / 17 + k)) * scale).astype(dtype)
+        planes = [y]
+        if pix_fmt != "gray":
+            ch = h // 2 if pix_fmt.startswith("yuv420") else h
+            planes += [np.full((ch, w // 2), 128 * scale, dtype), np.full((ch, w // 2), 120 * scale, dtype)]
+        writer.write(planes, bit_depth=depth)
+    writer.commit()
+    # libaom's test grain 1 (its first frame's set; luma only on grey pictures)
+    case = json.loads((CONFORMANCE / "av1_tv01_176x144_420p8" / "case.json").read_text())
+    av1 = dict(case["frames_info"][0]["params"]["av1"])
+    if pix_fmt == "gray":
+        av1.update(num_cb_points=0, num_cr_points=0, point_cb_value=[], point_cb_scaling=[], point_cr_value=[],
+                   point_cr_scaling=[])
+    (tmp_path / "p.json").write_text(json.dumps({"av1": av1}))
+    grainy = tmp_path / "grainy.y4m"
+    run_tool("apply", "-i", str(clean), "-o", str(grainy), "--params", str(tmp_path / "p.json"), "-q")
+    reader = filmgrain.VideoReader(str(grainy))
+    pictures = []
+    while (p := reader.read()) is not None:
+        pictures.append(p if pix_fmt != "gray" else p[0])
+    assert len(pictures) == frames
+    got = filmgrain.analyze(pictures, "av1", bit_depth=depth, spatial=True)
+    run_tool("analyze", str(grainy), "--model", "av1", "-o", str(tmp_path / "cli.json"), "--spatial", "-q")
+    assert got == json.loads((tmp_path / "cli.json").read_text())
+    assert '"apply_grain": 1' in json.dumps(got)  # grain found, not an empty estimate
+
+
+def test_analyze_refuses_an_empty_picture_list():
+    with pytest.raises(ValueError, match="no picture"):
+        filmgrain.analyze([], "av1")
+
+
+def test_video_writer_refuses_a_picture_of_another_format(tmp_path):
+    w = filmgrain.VideoWriter(str(tmp_path / "o.y4m"), filmgrain.VideoInfo(64, 32, "yuv420p"), True)
+    y = np.zeros((32, 64), np.uint8)
+    with pytest.raises(ValueError, match="64x32 yuv422p picture .* which holds 64x32 yuv420p"):
+        w.write([y, np.zeros((32, 32), np.uint8), np.zeros((32, 32), np.uint8)])
+    assert not (tmp_path / "o.y4m").exists()

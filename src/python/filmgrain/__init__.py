@@ -104,13 +104,50 @@ def stats(clean: Any, grainy: Any, *, bit_depth: int | None = None, **options: A
     return _filmgrain.stats_files(command_arguments([clean, grainy], options))
 
 
-def analyze(input: str, model: str, output: str | None = None, **options: Any) -> dict:
+def _pix_fmt_of(planes: Sequence[Any], bit_depth: int) -> str:
+    """The pix_fmt of a picture given as its planes (Y only: gray)."""
+    suffix = "" if bit_depth == 8 else f"{bit_depth}le"
+    if len(planes) == 1:
+        return "gray" + suffix
+    (h, w), (ch, cw) = planes[0].shape, planes[1].shape
+    sub_x, sub_y = cw < w, ch < h
+    base = "yuv420p" if sub_x and sub_y else "yuv422p" if sub_x else "yuv444p"
+    return base + suffix
+
+
+def _write_frames(path: str, frames: Iterable[Any], bit_depth: int | None) -> None:
+    """A Y4M clip of pictures, each its planes (Y, Cb, Cr) or one 2-D array (grey)."""
+    import numpy as np
+    writer = None
+    for frame in frames:
+        planes = [np.asarray(frame)] if _is_array(frame) else [np.asarray(p) for p in frame]
+        depth = bit_depth if bit_depth is not None else (8 if planes[0].dtype == np.uint8 else 10)
+        if writer is None:
+            h, w = planes[0].shape
+            writer = _filmgrain.VideoWriter(path, _filmgrain.VideoInfo(w, h, _pix_fmt_of(planes, depth)), True)
+        writer.write(planes, bit_depth=depth)
+    if writer is None:
+        raise ValueError("analyze: no picture given")
+    writer.commit()
+
+
+def analyze(input: Any, model: str, output: str | None = None, *, bit_depth: int | None = None,
+            **options: Any) -> dict:
     """Estimates FGC SEI (model="fgc") or AV1 (model="av1") grain parameters from a grainy
     clip, as ``filmgrain analyze``; returns the parameters (the JSON form) and writes them to
-    ``output`` when given. Options: denoised, table, afgs1, sei, sei_codec, report, flavour,
-    max_frames, frame_step, temporal_radius, spatial, accuracy, max_lag, size, pix_fmt, fps."""
+    ``output`` when given. ``input`` is a file name, or the pictures themselves: a sequence of
+    pictures, each its planes (Y, Cb, Cr) as uint8 / uint16 numpy arrays (the chroma format
+    from their sizes) or one 2-D array (grey); uint16 samples are ``bit_depth`` bits (default
+    10). Options: denoised, table, afgs1, sei, sei_codec, report, flavour, max_frames,
+    frame_step, temporal_radius, spatial, accuracy, max_lag, size, pix_fmt, fps."""
     options.setdefault("quiet", True)
     with tempfile.TemporaryDirectory(prefix="filmgrain-") as tmp:
+        if not isinstance(input, (str, os.PathLike)):
+            # the pictures go through the same reader as a file (a Y4M in a temporary directory):
+            # the same analysis, so the same parameters as `filmgrain analyze` on that file
+            clip = os.path.join(tmp, "input.y4m")
+            _write_frames(clip, input, bit_depth)
+            input = clip
         target = output or os.path.join(tmp, "params.json")
         _filmgrain.run_command(command_arguments(["analyze", input, "--model", model, "-o", target], options))
         with open(target, encoding="utf-8") as f:

@@ -36,6 +36,7 @@ class Session:
     def last_result(self) -> dict[str, Any]: ...
 
 class VideoInfo:
+    def __init__(self, width: int, height: int, pix_fmt: str = ..., fps: str = ..., y4m: bool = ...) -> None: ...
     width: int
     height: int
     pix_fmt: str
