@@ -54,7 +54,11 @@ public:
     void write_outputs_from(const std::vector<analysis::PictureObservations>& pictures, int frames) const;
 
 private:
-    void write_outputs(const analysis::GrainAnalyzer& analyzer, int frames) const;
+    // The analyser over [from, to) with the temporal neighbours beyond its ends.
+    std::unique_ptr<analysis::GrainAnalyzer> analyse_range(int from, int to) const;
+    // `sample`: the picture the report shows (the one-pass analyser's own when null).
+    void write_outputs(const analysis::GrainAnalyzer& analyzer, int frames,
+                       const analysis::AnalysedPicture* sample = nullptr) const;
     AnalyzeOptions o_;
     std::unique_ptr<VideoReader> reader_;  // opened by the constructor, read by run()
     VideoInfo info_;

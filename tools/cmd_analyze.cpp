@@ -98,7 +98,7 @@ AnalysisJob::AnalysisJob(const AnalyzeOptions& options) : o_(options) {
     ao_ = analysis_options_for(o_, total_);
 }
 
-std::vector<analysis::PictureObservations> AnalysisJob::observe_range(int from, int to) const {
+std::unique_ptr<analysis::GrainAnalyzer> AnalysisJob::analyse_range(int from, int to) const {
     if (from < 0 || to < from)
         throw Error(ErrorCode::kInvalidArgument, "picture range [" + std::to_string(from) + ", " + std::to_string(to) +
                                                      ") is not a range of pictures");
@@ -112,8 +112,8 @@ std::vector<analysis::PictureObservations> AnalysisJob::observe_range(int from, 
     std::unique_ptr<VideoReader> dreader;
     if (!o_.denoised.empty()) dreader = std::make_unique<VideoReader>(o_.denoised, o_.raw.to_info());
     if (!reader.skip_frames(ao.first_index) || (dreader && !dreader->skip_frames(ao.first_index)))
-        return {};
-    analysis::GrainAnalyzer analyzer(ao, info_.format, info_.width, info_.height);
+        return nullptr;
+    auto analyzer = std::make_unique<analysis::GrainAnalyzer>(ao, info_.format, info_.width, info_.height);
     FrameBuffer in, den;
     for (int k = ao.first_index; k < to + radius && reader.read(in); k++) {
         const FrameBuffer* dptr = nullptr;
@@ -123,10 +123,15 @@ std::vector<analysis::PictureObservations> AnalysisJob::observe_range(int from, 
                                                 " before the input");
             dptr = &den;
         }
-        analyzer.add_frame(in, dptr);
+        analyzer->add_frame(in, dptr);
     }
-    analyzer.finish();
-    return analyzer.picture_observations();
+    analyzer->finish();
+    return analyzer;
+}
+
+std::vector<analysis::PictureObservations> AnalysisJob::observe_range(int from, int to) const {
+    const auto analyzer = analyse_range(from, to);
+    return analyzer ? analyzer->picture_observations() : std::vector<analysis::PictureObservations>{};
 }
 
 int AnalysisJob::run() {
@@ -167,16 +172,28 @@ int AnalysisJob::run() {
 }
 
 void AnalysisJob::write_outputs_from(const std::vector<analysis::PictureObservations>& pictures, int frames) const {
-    if (!o_.report.empty())
-        throw Error(ErrorCode::kInvalidArgument,
-                    "--report needs the analysed pictures themselves: run the analysis in one process for a report");
     if (frames <= 0) throw Error(ErrorCode::kIo, "input '" + o_.input + "' holds no frame");
     analysis::GrainAnalyzer analyzer(ao_, info_.format, info_.width, info_.height);
     for (const auto& p : pictures) analyzer.merge_picture(p);
-    write_outputs(analyzer, frames);
+    if (o_.report.empty() || pictures.empty()) return write_outputs(analyzer, frames);
+    // The report's picture is the one the one-pass analyser keeps (GrainAnalyzer::add_frame):
+    // the first analysed picture with a full set of neighbours before it, else the first.
+    // Analysed again here on its own, with the same neighbours, it is the same picture.
+    int sample = pictures.front().index;
+    for (const auto& p : pictures)
+        if (p.index >= 2 * ao_.temporal_radius) {
+            sample = p.index;
+            break;
+        }
+    const auto one = analyse_range(sample, sample + 1);
+    if (!one || one->sample_picture().index != sample)
+        throw Error(ErrorCode::kIo, "input '" + o_.input + "': picture " + std::to_string(sample) +
+                                        " of the report could not be read again");
+    write_outputs(analyzer, frames, &one->sample_picture());
 }
 
-void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int k) const {
+void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int k,
+                                const analysis::AnalysedPicture* sample_override) const {
     const AnalyzeOptions& o = o_;
     const VideoInfo& info = info_;
     const analysis::AnalysisOptions& ao = ao_;
@@ -294,7 +311,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
     if (!o.report.empty()) {
         const std::filesystem::path rp(o.report);
         if (rp.has_parent_path()) std::filesystem::create_directories(rp.parent_path());
-        const auto& sample = analyzer->sample_picture();
+        const auto& sample = sample_override ? *sample_override : analyzer->sample_picture();
         FrameBuffer den_fb = picture_from_planes(sample.denoised, fmt, info.width, info.height);
         FrameBuffer resynth = den_fb;
         // the round trip: the estimated set re-synthesized on the denoised picture

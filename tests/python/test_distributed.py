@@ -176,9 +176,17 @@ def test_analyze_three_scenes_equals_cli(client, tmp_path, per_task, model):
     (tmp_path / "grain.json").write_text(json.dumps({"frames": frames}))
     run_tool("apply", "-i", str(src), "-o", str(grainy), "--params", str(tmp_path / "grain.json"), "-q")
     opts = ["--model", model, "--frame-step", "2", "-q"]
-    distributed.analyze_job([str(grainy), "-o", str(tmp_path / "dist.json"), *opts], client, frames_per_task=per_task)
-    run_tool("analyze", str(grainy), "-o", str(tmp_path / "cli.json"), *opts)
+    distributed.analyze_job([str(grainy), "-o", str(tmp_path / "dist.json"), *opts, "--report",
+                             str(tmp_path / "dist" / "report.html")], client, frames_per_task=per_task)
+    run_tool("analyze", str(grainy), "-o", str(tmp_path / "cli.json"), *opts, "--report",
+             str(tmp_path / "cli" / "report.html"))
     assert (tmp_path / "dist.json").read_bytes() == (tmp_path / "cli.json").read_bytes()
+    # the report too: its picture (the first analysed one with all its neighbours) analysed
+    # again on the driver is the one-pass analyser's, and its plots come from the same sums
+    names = sorted(p.name for p in (tmp_path / "cli").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "dist").iterdir()) and "report.html" in names
+    for n in names:
+        assert (tmp_path / "dist" / n).read_bytes() == (tmp_path / "cli" / n).read_bytes(), n
 
 
 def test_worker_killed_mid_run(tmp_path):
