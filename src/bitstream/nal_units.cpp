@@ -2,7 +2,7 @@
 
 namespace filmgrain::bitstream {
 
-AnnexBSplit split_annexb(const uint8_t* data, std::size_t size) {
+AnnexBSplit split_annexb(const uint8_t* data, std::size_t size, std::size_t base) {
     AnnexBSplit out;
     // Positions just after each 00 00 01.
     std::vector<std::size_t> starts;
@@ -27,7 +27,7 @@ AnnexBSplit split_annexb(const uint8_t* data, std::size_t size) {
         std::size_t end = k + 1 < starts.size() ? starts[k + 1] - 3 : size;
         while (end > begin && data[end - 1] == 0) end--;  // trailing_zero_8bits / zero_byte
         if (end == begin) {
-            out.warnings.push_back("empty NAL unit at byte " + std::to_string(begin));
+            out.warnings.push_back("empty NAL unit at byte " + std::to_string(base + begin));
             continue;
         }
         out.nals.push_back({begin, end - begin});

@@ -19,8 +19,9 @@ struct AnnexBSplit {
 };
 
 // Every NAL unit between 0x000001 start codes; zero bytes before a start code are
-// leading/trailing_zero_8bits (B.2) and belong to no NAL unit.
-AnnexBSplit split_annexb(const uint8_t* data, std::size_t size);
+// leading/trailing_zero_8bits (B.2) and belong to no NAL unit. `base`: the position of
+// data[0] in the stream, for the byte positions warnings give.
+AnnexBSplit split_annexb(const uint8_t* data, std::size_t size, std::size_t base = 0);
 
 // NAL unit payload -> RBSP: drops each emulation_prevention_three_byte (a 0x03 after two
 // zero bytes, H.264 7.4.1 / H.265 7.4.2 / H.266 7.4.2.1).

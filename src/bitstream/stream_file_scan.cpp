@@ -23,41 +23,42 @@ StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> 
         return Error(ErrorCode::kInvalidArgument,
                      "cannot tell the codec of '" + path + "' (give --codec h264|h265|h266|av1)");
     };
-    std::vector<uint8_t> bytes;
     const auto in = std::make_unique<InputFile>(path);  // Error(kIo) naming it when it cannot be opened
-    const std::string limit = "; the limit for a coded stream is " + std::to_string(kMaxStreamFileBytes) + " bytes (1 GiB)";
-    if (const auto left = in->remaining()) {
-        if (*left > kMaxStreamFileBytes)
-            throw Error(ErrorCode::kIo, "'" + path + "' holds " + std::to_string(*left) + " bytes" + limit);
-        bytes.resize(std::size_t(*left));
-        bytes.resize(in->read(bytes.data(), bytes.size()));
-        check_container(bytes);
-        if (!codec) codec = detect_stream_codec(bytes.data(), bytes.size(), path);
-        if (!codec) throw unknown_codec();
-        return scan_stream(bytes.data(), bytes.size(), *codec);
-    }
-    // A pipe or device: its beginning first, which tells a stream from anything else.
+    const std::string limit = "; the limit for an AV1 stream is " + std::to_string(kMaxStreamFileBytes) + " bytes (1 GiB)";
+    // Its beginning first, which tells a stream from anything else (a pipe or device whose
+    // first 16 MiB are neither, e.g. /dev/zero, fails there).
     constexpr std::size_t kChunk = std::size_t(1) << 20, kProbe = std::size_t(16) << 20;
-    bool probed = false;
-    for (;;) {
+    std::vector<uint8_t> bytes;
+    bool end = false;
+    while (!end && bytes.size() < kProbe) {
+        const std::size_t at = bytes.size();
+        bytes.resize(at + kChunk);
+        const std::size_t got = in->read(bytes.data() + at, kChunk);  // fewer only at the end
+        bytes.resize(at + got);
+        end = got < kChunk;
+    }
+    check_container(bytes);
+    if (!codec) codec = detect_stream_codec(bytes.data(), bytes.size(), path);
+    if (!codec) throw unknown_codec();
+    // H.26x: scanned as it is read, whatever its size (a broadcast title runs to tens of GB)
+    if (*codec != StreamCodec::kAv1)
+        return scan_nal_stream_incrementally(*codec, std::move(bytes), [&](uint8_t* dst, std::size_t n) {
+            return end ? std::size_t(0) : in->read(dst, n);
+        });
+    // AV1 is scanned whole
+    if (const auto left = in->remaining(); left && bytes.size() + *left > kMaxStreamFileBytes)
+        throw Error(ErrorCode::kIo, "'" + path + "' holds " + std::to_string(bytes.size() + *left) + " bytes" + limit);
+    while (!end) {
         const std::size_t at = bytes.size();
         const std::size_t room = std::min(kChunk, kMaxStreamFileBytes + 1 - at);
         bytes.resize(at + room);
-        const std::size_t got = in->read(bytes.data() + at, room);  // fewer only at the end
+        const std::size_t got = in->read(bytes.data() + at, room);
         bytes.resize(at + got);
         if (bytes.size() > kMaxStreamFileBytes)
             throw Error(ErrorCode::kIo, "'" + path + "' holds more than " + std::to_string(kMaxStreamFileBytes) +
                                             " bytes" + limit);
-        const bool end = got < room;
-        if (!probed && (end || bytes.size() >= kProbe)) {
-            probed = true;
-            check_container(bytes);
-            if (!codec) codec = detect_stream_codec(bytes.data(), bytes.size(), path);
-            if (!codec) throw unknown_codec();
-        }
-        if (end) break;
+        end = got < room;
     }
-    check_container(bytes);
     return scan_stream(bytes.data(), bytes.size(), *codec);
 }
 

@@ -179,7 +179,7 @@ NalStreamParser& NalStreamParser::operator=(NalStreamParser&&) noexcept = defaul
 
 std::vector<std::string> NalStreamParser::push(const uint8_t* data, std::size_t size, std::size_t offset,
                                                std::vector<AccessUnit>& done) {
-    AnnexBSplit split = split_annexb(data, size);
+    AnnexBSplit split = split_annexb(data, size, offset);
     for (const NalSpan& span : split.nals) state_->nal_unit(data + span.offset, span.size, offset + span.offset, done);
     return std::move(split.warnings);
 }
@@ -268,6 +268,14 @@ StreamScan scan_nal_stream(const uint8_t* data, std::size_t size, StreamCodec co
     return scan;
 }
 
+// The start of the last start code (0x000001) in data[from, size) at or after `from`; 0 when
+// there is none.
+std::size_t last_start_code(const uint8_t* data, std::size_t size, std::size_t from) {
+    for (std::size_t i = size >= 3 ? size - 3 : 0; i + 3 <= size && i >= from && i > 0; i--)
+        if (data[i] == 0 && data[i + 1] == 0 && data[i + 2] == 1) return i;
+    return 0;
+}
+
 StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
     StreamScan scan;
     scan.codec = StreamCodec::kAv1;
@@ -284,6 +292,56 @@ StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
     for (Av1TemporalUnit& tu : s.units) scan.units.push_back(parser.push(tu));
     return scan;
 }
+
+}  // namespace
+
+StreamScan scan_nal_stream_incrementally(StreamCodec codec, std::vector<uint8_t> first,
+                                         const std::function<std::size_t(uint8_t*, std::size_t)>& read,
+                                         std::size_t run_bytes) {
+    StreamScan scan;
+    scan.codec = codec;
+    scan.container = "annexb";
+    scan.poc_support = poc_support_text(codec);
+    NalStreamParser parser(codec);
+    const std::size_t kRun = std::max<std::size_t>(run_bytes, 1);
+    std::vector<uint8_t> held = std::move(first);  // from the last start code on
+    std::size_t held_offset = 0;                   // of held[0] in the stream
+    std::size_t searched = 0;                      // held[0, searched) holds no later start code
+    for (bool end = false; !end;) {
+        const std::size_t at = held.size();
+        held.resize(at + kRun);
+        const std::size_t got = read(held.data() + at, kRun);
+        held.resize(at + got);
+        end = got < kRun;
+        // Everything before the last start code is whole NAL units: parse it, keep the rest
+        // (a unit may continue in the next run).
+        std::size_t cut = end ? held.size() : last_start_code(held.data(), held.size(), searched);
+        // zero bytes before the start code are its own (zero_byte, trailing_zero_8bits): they
+        // go with it, as the whole-stream split leaves them out of the unit before
+        while (!end && cut > 0 && held[cut - 1] == 0) cut--;
+        // the first run parsed holds the stream's first start code, so that what precedes it
+        // is reported as the whole-stream split reports it
+        if (!end && held_offset == 0 && cut > 0) {
+            std::size_t first_code = 0;
+            while (first_code + 3 <= held.size() &&
+                   !(held[first_code] == 0 && held[first_code + 1] == 0 && held[first_code + 2] == 1))
+                first_code++;
+            if (cut <= first_code) cut = 0;
+        }
+        if (cut == 0) {
+            searched = held.size() >= 2 ? held.size() - 2 : 0;
+            continue;
+        }
+        for (std::string& w : parser.push(held.data(), cut, held_offset, scan.units)) scan.warnings.push_back(std::move(w));
+        held.erase(held.begin(), held.begin() + std::ptrdiff_t(cut));
+        held_offset += cut;
+        searched = 0;
+    }
+    parser.end_access_unit(scan.units);
+    return scan;
+}
+
+namespace {
 
 std::string lower_extension(const std::string& path) {
     const auto dot = path.rfind('.');

@@ -204,3 +204,64 @@ TEST(EncodedStreams, TruncatedAndCorruptedCopiesAreReportedNotFatal) {
     EXPECT_GT(damaged_reports, 0);
     fs::remove_all(dir);
 }
+
+// A stream read a run at a time (scan_stream_file scans H.26x so, whatever its size) gives
+// the whole-stream scan unit for unit, field for field: for x265 and x264 streams with SEI in
+// every unit, whatever the run length and the first bytes, and for damaged copies too.
+namespace {
+
+std::string describe(const StreamScan& s) {
+    std::string d;
+    for (const std::string& w : s.warnings) d += "W " + w + "\n";
+    for (const AccessUnit& u : s.units) {
+        d += std::to_string(u.index) + " @" + std::to_string(u.offset) + " " + u.picture_type + " poc " +
+             (u.poc ? std::to_string(*u.poc) : "-") + " idr " + (u.idr_pic_id ? std::to_string(*u.idr_pic_id) : "-") +
+             " seq " + std::to_string(u.sequence) + " out " + std::to_string(u.output) + " nal " +
+             std::to_string(u.nal_units) + " pic " + std::to_string(u.pictures) + " ra " + std::to_string(u.random_access);
+        for (const auto& [at, size] : u.parameter_sets) d += " ps " + std::to_string(at) + "+" + std::to_string(size);
+        for (const FoundFgc& f : u.fgc) d += " fgc " + std::to_string(f.suffix) + ":" + std::to_string(f.payload.size()) + f.error;
+        for (const FoundT35& t : u.t35) d += " t35 " + std::to_string(t.t35.bytes.size());
+        for (const std::string& w : u.warnings) d += " w " + w;
+        d += "\n";
+    }
+    return d;
+}
+
+StreamScan scan_in_runs(const std::vector<uint8_t>& stream, StreamCodec codec, std::size_t first_bytes, std::size_t run) {
+    std::vector<uint8_t> first(stream.begin(), stream.begin() + long(std::min(first_bytes, stream.size())));
+    std::size_t pos = first.size();
+    return scan_nal_stream_incrementally(codec, std::move(first), [&](uint8_t* dst, std::size_t n) {
+        const std::size_t k = std::min(n, stream.size() - pos);
+        std::copy(stream.begin() + long(pos), stream.begin() + long(pos + k), dst);
+        pos += k;
+        return k;
+    }, run);
+}
+
+}  // namespace
+
+TEST(EncodedStreams, ScanningInRunsEqualsScanningWhole) {
+    const fs::path dir = fresh_test_dir("runs");
+    for (StreamCodec codec : {StreamCodec::kH265, StreamCodec::kH264}) {
+        SCOPED_TRACE(stream_codec_name(codec));
+        const StreamScan whole = encode_and_scan(dir, codec,
+                                                 codec == StreamCodec::kH265 ? "--preset ultrafast --bframes 3 --keyint 8"
+                                                                             : "--preset ultrafast --bframes 2 --keyint 8");
+        const auto stream = read_bytes(dir / "sei.bin");
+        ASSERT_FALSE(stream.empty());
+        const std::string want = describe(whole);
+        for (std::size_t run : {1, 2, 3, 5, 61, 997, 1 << 16})
+            for (std::size_t first : {std::size_t(0), std::size_t(4), std::size_t(700)})
+                ASSERT_EQ(describe(scan_in_runs(stream, codec, first, run)), want) << "run " << run << " first " << first;
+        // damaged copies: the same warnings and units either way
+        std::mt19937 rng(11);
+        for (int trial = 0; trial < 200; trial++) {
+            std::vector<uint8_t> s(stream.begin(), stream.begin() + long(rng() % stream.size()));
+            for (int flips = 0; flips < 4 && !s.empty(); flips++) s[rng() % s.size()] ^= uint8_t(1u << (rng() % 8));
+            const std::size_t first = rng() % 64, run = 1 + rng() % 300;
+            ASSERT_EQ(describe(scan_in_runs(s, codec, first, run)), describe(scan_stream(s.data(), s.size(), codec)))
+                << "trial " << trial << " first " << first << " run " << run;
+        }
+    }
+    fs::remove_all(dir);
+}
