@@ -14,23 +14,25 @@ int64_t le64(const uint8_t* p) {
 
 // One OBU at data[pos]; `available` bounds it. With `sized_by_container` the OBU may
 // lack obu_size (Annex B obu_length gives it).
-bool read_obu(const uint8_t* data, std::size_t end, std::size_t& pos, Av1Obu& obu, std::string& why) {
-    const std::size_t start = pos;
+// `base`: the position of data[0] in the stream, for offsets and messages.
+bool read_obu(const uint8_t* data, std::size_t end, std::size_t& pos, Av1Obu& obu, std::string& why,
+              std::size_t base = 0) {
+    const std::size_t start = pos, at = base + pos;
     if (pos >= end) {
         why = "OBU header missing";
         return false;
     }
     const uint8_t h = data[pos++];
     if (h & 0x80) {
-        why = "obu_forbidden_bit=1 at byte " + std::to_string(start);
+        why = "obu_forbidden_bit=1 at byte " + std::to_string(at);
         return false;
     }
     obu.type = (h >> 3) & 15;
-    obu.offset = start;
+    obu.offset = at;
     const bool extension = h & 4, has_size = h & 2;
     if (extension) {
         if (pos >= end) {
-            why = "obu_extension_header truncated at byte " + std::to_string(start);
+            why = "obu_extension_header truncated at byte " + std::to_string(at);
             return false;
         }
         obu.temporal_id = data[pos] >> 5;
@@ -39,11 +41,11 @@ bool read_obu(const uint8_t* data, std::size_t end, std::size_t& pos, Av1Obu& ob
     }
     uint64_t size = end - pos;
     if (has_size && !read_leb128(data, end, pos, size)) {
-        why = "obu_size truncated at byte " + std::to_string(start);
+        why = "obu_size truncated at byte " + std::to_string(at);
         return false;
     }
     if (size > end - pos) {
-        why = "OBU type " + std::to_string(obu.type) + " at byte " + std::to_string(start) + ": obu_size=" +
+        why = "OBU type " + std::to_string(obu.type) + " at byte " + std::to_string(at) + ": obu_size=" +
               std::to_string(size) + " exceeds the " + std::to_string(end - pos) + " byte(s) left";
         return false;
     }
@@ -53,16 +55,51 @@ bool read_obu(const uint8_t* data, std::size_t end, std::size_t& pos, Av1Obu& ob
 }
 
 // OBUs of [pos, end) one after another (Section 5 form).
-void read_obus(const uint8_t* data, std::size_t pos, std::size_t end, Av1TemporalUnit& tu) {
+void read_obus(const uint8_t* data, std::size_t pos, std::size_t end, Av1TemporalUnit& tu, std::size_t base = 0) {
     while (pos < end) {
         Av1Obu obu;
         std::string why;
-        if (!read_obu(data, end, pos, obu, why)) {
+        if (!read_obu(data, end, pos, obu, why, base)) {
             tu.warnings.push_back(why);
             return;
         }
         tu.obus.push_back(std::move(obu));
     }
+}
+
+// One IVF frame at data[pos] (its 12-byte header first) of a buffer whose data[0] is stream
+// byte `base`: false when the buffer holds less than the whole frame (nothing consumed).
+bool read_ivf_frame(const uint8_t* data, std::size_t size, std::size_t& pos, std::size_t base, Av1TemporalUnit& tu) {
+    if (size - pos < 12) return false;
+    const uint32_t frame_size = le32(data + pos);
+    if (frame_size > size - pos - 12) return false;
+    tu.offset = base + pos;
+    tu.pts = le64(data + pos + 4);
+    read_obus(data, pos + 12, pos + 12 + frame_size, tu, base);
+    pos += 12 + std::size_t(frame_size);
+    return true;
+}
+
+// What is left of an IVF stream when it ends part-way into a frame (data[pos] onward, stream
+// byte base + pos): the warning, and the part of the frame there is.
+void read_ivf_tail(const uint8_t* data, std::size_t size, std::size_t pos, std::size_t base, Av1Stream& s) {
+    if (pos >= size) return;
+    if (size - pos < 12) {
+        s.warnings.push_back("IVF frame header truncated at byte " + std::to_string(base + pos));
+        return;
+    }
+    Av1TemporalUnit tu;
+    tu.offset = base + pos;
+    tu.pts = le64(data + pos + 4);
+    s.warnings.push_back("IVF frame at byte " + std::to_string(tu.offset) + ": size " + std::to_string(le32(data + pos)) +
+                         " exceeds the " + std::to_string(size - pos - 12) + " byte(s) left");
+    read_obus(data, pos + 12, size, tu, base);  // what there is of it
+    s.units.push_back(std::move(tu));
+}
+
+std::size_t ivf_header_size(const uint8_t* data) {
+    const std::size_t header_size = data[6] | data[7] << 8;
+    return header_size < 32 ? 32 : header_size;
 }
 
 Av1Stream parse_ivf(const uint8_t* data, std::size_t size) {
@@ -72,29 +109,10 @@ Av1Stream parse_ivf(const uint8_t* data, std::size_t size) {
         s.warnings.push_back("IVF header truncated (" + std::to_string(size) + " of 32 bytes)");
         return s;
     }
-    const std::size_t header_size = data[6] | data[7] << 8;
-    std::size_t pos = header_size < 32 ? 32 : header_size;
-    while (pos < size) {
-        if (size - pos < 12) {
-            s.warnings.push_back("IVF frame header truncated at byte " + std::to_string(pos));
-            break;
-        }
-        const uint32_t frame_size = le32(data + pos);
-        Av1TemporalUnit tu;
-        tu.offset = pos;
-        tu.pts = le64(data + pos + 4);
-        pos += 12;
-        if (frame_size > size - pos) {
-            s.warnings.push_back("IVF frame at byte " + std::to_string(tu.offset) + ": size " + std::to_string(frame_size) +
-                                 " exceeds the " + std::to_string(size - pos) + " byte(s) left");
-            read_obus(data, pos, size, tu);  // what there is of it
-            s.units.push_back(std::move(tu));
-            break;
-        }
-        read_obus(data, pos, pos + frame_size, tu);
+    std::size_t pos = ivf_header_size(data);
+    for (Av1TemporalUnit tu; pos < size && read_ivf_frame(data, size, pos, 0, tu); tu = Av1TemporalUnit{})
         s.units.push_back(std::move(tu));
-        pos += frame_size;
-    }
+    read_ivf_tail(data, size, pos, 0, s);
     return s;
 }
 
@@ -214,6 +232,34 @@ bool looks_like_av1_annexb(const uint8_t* data, std::size_t size) {
     if (!read_leb128(data, fu_end, pos, ol) || ol > fu_end - pos || ol == 0) return false;
     // the first OBU of a temporal unit is its temporal delimiter
     return ((data[pos] >> 3) & 15) == kObuTemporalDelimiter && !(data[pos] & 0x80);
+}
+
+std::vector<Av1TemporalUnit> IvfStreamReader::push(const uint8_t* data, std::size_t size) {
+    held_.insert(held_.end(), data, data + size);
+    std::vector<Av1TemporalUnit> out;
+    if (!header_read_) {
+        if (held_.size() < 32) return out;
+        pos_ = ivf_header_size(held_.data());
+        header_read_ = true;
+    }
+    if (pos_ > held_.size()) return out;  // a header longer than what has arrived
+    for (Av1TemporalUnit tu; read_ivf_frame(held_.data(), held_.size(), pos_, held_base_, tu); tu = Av1TemporalUnit{})
+        out.push_back(std::move(tu));
+    held_.erase(held_.begin(), held_.begin() + std::ptrdiff_t(pos_));
+    held_base_ += pos_;
+    pos_ = 0;
+    return out;
+}
+
+Av1Stream IvfStreamReader::finish() {
+    Av1Stream s;
+    s.container = Av1Container::kIvf;
+    if (!header_read_)
+        s.warnings.push_back("IVF header truncated (" + std::to_string(held_.size()) + " of 32 bytes)");
+    else if (pos_ < held_.size())
+        read_ivf_tail(held_.data(), held_.size(), pos_, held_base_, s);
+    held_.clear();
+    return s;
 }
 
 Av1Stream parse_av1_stream(const uint8_t* data, std::size_t size, Av1Container container) {

@@ -58,6 +58,22 @@ bool looks_like_av1_annexb(const uint8_t* data, std::size_t size);
 
 Av1Stream parse_av1_stream(const uint8_t* data, std::size_t size, Av1Container container);
 
+// parse_av1_stream of an IVF stream that arrives a run of bytes at a time: push() gives the
+// frames each run completes, finish() what a truncated end leaves and the container-level
+// warnings. Offsets and warnings are the whole-stream parse's; only an unfinished frame is
+// held.
+class IvfStreamReader {
+public:
+    std::vector<Av1TemporalUnit> push(const uint8_t* data, std::size_t size);
+    Av1Stream finish();
+
+private:
+    std::vector<uint8_t> held_;
+    std::size_t held_base_ = 0;  // stream position of held_[0]
+    std::size_t pos_ = 0;        // the next frame header in held_
+    bool header_read_ = false;
+};
+
 // metadata_obu() payload: metadata_type, then for ITU-T T.35 the T.35 bytes without the
 // OBU's trailing bits. Returns false when the OBU is not T.35 metadata or is damaged.
 bool av1_metadata_t35(const Av1Obu& obu, std::vector<uint8_t>& t35, std::string* warning);

@@ -40,12 +40,12 @@ StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> 
     check_container(bytes);
     if (!codec) codec = detect_stream_codec(bytes.data(), bytes.size(), path);
     if (!codec) throw unknown_codec();
-    // H.26x: scanned as it is read, whatever its size (a broadcast title runs to tens of GB)
-    if (*codec != StreamCodec::kAv1)
-        return scan_nal_stream_incrementally(*codec, std::move(bytes), [&](uint8_t* dst, std::size_t n) {
+    // H.26x and AV1 IVF: scanned as read, whatever the size (a broadcast title runs to tens of GB)
+    if (*codec != StreamCodec::kAv1 || looks_like_ivf(bytes.data(), bytes.size()))
+        return scan_stream_incrementally(*codec, std::move(bytes), [&](uint8_t* dst, std::size_t n) {
             return end ? std::size_t(0) : in->read(dst, n);
         });
-    // AV1 is scanned whole
+    // other AV1 containers are scanned whole
     if (const auto left = in->remaining(); left && bytes.size() + *left > kMaxStreamFileBytes)
         throw Error(ErrorCode::kIo, "'" + path + "' holds " + std::to_string(bytes.size() + *left) + " bytes" + limit);
     while (!end) {

@@ -295,15 +295,34 @@ StreamScan scan_av1_stream(const uint8_t* data, std::size_t size) {
 
 }  // namespace
 
-StreamScan scan_nal_stream_incrementally(StreamCodec codec, std::vector<uint8_t> first,
+StreamScan scan_stream_incrementally(StreamCodec codec, std::vector<uint8_t> first,
                                          const std::function<std::size_t(uint8_t*, std::size_t)>& read,
                                          std::size_t run_bytes) {
     StreamScan scan;
     scan.codec = codec;
-    scan.container = "annexb";
     scan.poc_support = poc_support_text(codec);
-    NalStreamParser parser(codec);
     const std::size_t kRun = std::max<std::size_t>(run_bytes, 1);
+    if (codec == StreamCodec::kAv1) {
+        if (!looks_like_ivf(first.data(), first.size()))
+            throw Error(ErrorCode::kUnsupported, "only AV1 in IVF is scanned as it arrives (low-overhead OBUs and Annex B whole)");
+        scan.container = av1_container_name(Av1Container::kIvf);
+        IvfStreamReader ivf;
+        Av1StreamParser parser;
+        std::vector<uint8_t> run = std::move(first);
+        for (bool end = false;;) {
+            for (Av1TemporalUnit& tu : ivf.push(run.data(), run.size())) scan.units.push_back(parser.push(tu));
+            if (end) break;
+            run.resize(kRun);
+            run.resize(read(run.data(), kRun));
+            end = run.size() < kRun;
+        }
+        Av1Stream tail = ivf.finish();
+        scan.warnings = std::move(tail.warnings);
+        for (Av1TemporalUnit& tu : tail.units) scan.units.push_back(parser.push(tu));
+        return scan;
+    }
+    scan.container = "annexb";
+    NalStreamParser parser(codec);
     std::vector<uint8_t> held = std::move(first);  // from the last start code on
     std::size_t held_offset = 0;                   // of held[0] in the stream
     std::size_t searched = 0;                      // held[0, searched) holds no later start code

@@ -132,20 +132,21 @@ private:
 
 StreamScan scan_stream(const uint8_t* data, std::size_t size, StreamCodec codec);
 
-// scan_stream of an H.26x Annex B stream that arrives a run of bytes at a time: `first`,
-// then what `read` gives (up to n bytes into its buffer, fewer only at the end), asked for
-// `run_bytes` at a time. Only the NAL units not yet parsed are held, so the stream's size is
-// no limit; the result is what scan_stream gives on the whole (runs are cut before start
-// codes for parsing).
-StreamScan scan_nal_stream_incrementally(StreamCodec codec, std::vector<uint8_t> first,
+// scan_stream of an H.26x Annex B or AV1 IVF stream that arrives a run of bytes at a time:
+// `first`, then what `read` gives (up to n bytes into its buffer, fewer only at the end),
+// asked for `run_bytes` at a time. Only the NAL units (IVF frame) not yet parsed are held, so
+// the stream's size is no limit; the result is what scan_stream gives on the whole (H.26x runs
+// are cut before start codes for parsing). Throws Error(kUnsupported) for AV1 that is not IVF.
+StreamScan scan_stream_incrementally(StreamCodec codec, std::vector<uint8_t> first,
                                          const std::function<std::size_t(uint8_t*, std::size_t)>& read,
                                          std::size_t run_bytes = std::size_t(4) << 20);
-// The most of an AV1 stream scan_stream_file reads (that scan holds the stream in memory):
-// 1 GiB. A regular file larger than that fails before it is read; a pipe or device once more
-// arrives. H.26x streams are scanned as they are read, whatever their size.
+// The most of an AV1 low-overhead or Annex B stream scan_stream_file reads (that scan holds
+// the stream in memory): 1 GiB. A regular file larger than that fails before it is read; a
+// pipe or device once more arrives. H.26x and AV1 IVF are scanned as they are read, whatever
+// their size.
 inline constexpr std::size_t kMaxStreamFileBytes = std::size_t(1) << 30;
-// Reads the file (Error kIo when it cannot, or when an AV1 stream holds more than
-// kMaxStreamFileBytes) and scans it; codec detected when absent. A pipe or device whose first 16 MiB are neither a
+// Reads the file (Error kIo when it cannot, or when an AV1 low-overhead or Annex B stream
+// holds more than kMaxStreamFileBytes) and scans it; codec detected when absent. A pipe or device whose first 16 MiB are neither a
 // recognisable stream nor a container (e.g. /dev/zero) fails then, without reading on.
 // Tool side (stream_file_scan.cpp): not in libfilmgrain, which does no file I/O.
 StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> codec);

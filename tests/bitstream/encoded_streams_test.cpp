@@ -222,6 +222,9 @@ std::string describe(const StreamScan& s) {
         for (const FoundFgc& f : u.fgc) d += " fgc " + std::to_string(f.suffix) + ":" + std::to_string(f.payload.size()) + f.error;
         for (const FoundT35& t : u.t35) d += " t35 " + std::to_string(t.t35.bytes.size());
         for (const std::string& w : u.warnings) d += " w " + w;
+        if (u.pts) d += " pts " + std::to_string(*u.pts);
+        if (u.av1_sequence_header) d += " seqhdr";
+        if (u.av1_frame_grain) d += " grain " + std::to_string(u.av1_frame_grain->grain_seed);
         d += "\n";
     }
     return d;
@@ -230,7 +233,7 @@ std::string describe(const StreamScan& s) {
 StreamScan scan_in_runs(const std::vector<uint8_t>& stream, StreamCodec codec, std::size_t first_bytes, std::size_t run) {
     std::vector<uint8_t> first(stream.begin(), stream.begin() + long(std::min(first_bytes, stream.size())));
     std::size_t pos = first.size();
-    return scan_nal_stream_incrementally(codec, std::move(first), [&](uint8_t* dst, std::size_t n) {
+    return scan_stream_incrementally(codec, std::move(first), [&](uint8_t* dst, std::size_t n) {
         const std::size_t k = std::min(n, stream.size() - pos);
         std::copy(stream.begin() + long(pos), stream.begin() + long(pos + k), dst);
         pos += k;
@@ -263,5 +266,33 @@ TEST(EncodedStreams, ScanningInRunsEqualsScanningWhole) {
                 << "trial " << trial << " first " << first << " run " << run;
         }
     }
+    fs::remove_all(dir);
+}
+
+TEST(EncodedStreams, Av1IvfScannedInRunsEqualsScanningWhole) {
+    const fs::path dir = fresh_test_dir("runs-av1");
+    write_synthetic_y4m(dir / "src.y4m", 64, 64, 8, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=8 --cpu-used=8 --kf-max-dist=4 --film-grain-test=3 -o '" +
+                            (dir / "g.ivf").string() + "' '" + (dir / "src.y4m").string() + "'"));
+    const auto stream = read_bytes(dir / "g.ivf");
+    const StreamScan whole = scan_stream(stream.data(), stream.size(), StreamCodec::kAv1);
+    ASSERT_EQ(whole.units.size(), 8u);
+    const std::string want = describe(whole);
+    for (std::size_t run : {1, 7, 12, 33, 1000, 1 << 16})
+        for (std::size_t first : {std::size_t(32), std::size_t(40), std::size_t(700)})
+            ASSERT_EQ(describe(scan_in_runs(stream, StreamCodec::kAv1, first, run)), want) << "run " << run << " first " << first;
+    std::mt19937 rng(12);
+    for (int trial = 0; trial < 200; trial++) {
+        std::vector<uint8_t> s(stream.begin(), stream.begin() + long(32 + rng() % (stream.size() - 32)));
+        for (int flips = 0; flips < 3; flips++) s[32 + rng() % (s.size() - 32)] ^= uint8_t(1u << (rng() % 8));
+        const std::size_t first = 32 + rng() % 64, run = 1 + rng() % 300;
+        ASSERT_EQ(describe(scan_in_runs(s, StreamCodec::kAv1, first, run)),
+                  describe(scan_stream(s.data(), s.size(), StreamCodec::kAv1)))
+            << "trial " << trial << " first " << first << " run " << run;
+    }
+    // cut inside the file header
+    const std::vector<uint8_t> header_only(stream.begin(), stream.begin() + 20);
+    EXPECT_EQ(describe(scan_in_runs(header_only, StreamCodec::kAv1, 8, 5)),
+              describe(scan_stream(header_only.data(), header_only.size(), StreamCodec::kAv1)));
     fs::remove_all(dir);
 }
