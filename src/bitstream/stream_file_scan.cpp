@@ -24,7 +24,7 @@ StreamScan scan_stream_file(const std::string& path, std::optional<StreamCodec> 
                      "cannot tell the codec of '" + path + "' (give --codec h264|h265|h266|av1)");
     };
     const auto in = std::make_unique<InputFile>(path);  // Error(kIo) naming it when it cannot be opened
-    const std::string limit = "; the limit for an AV1 stream is " + std::to_string(kMaxStreamFileBytes) + " bytes (1 GiB)";
+    const std::string limit = "; the limit for an AV1 low-overhead or Annex B stream is " + std::to_string(kMaxStreamFileBytes) + " bytes (1 GiB)";
     // Its beginning first, which tells a stream from anything else (a pipe or device whose
     // first 16 MiB are neither, e.g. /dev/zero, fails there).
     constexpr std::size_t kChunk = std::size_t(1) << 20, kProbe = std::size_t(16) << 20;
