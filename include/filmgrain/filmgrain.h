@@ -399,6 +399,16 @@ FG_API fg_status fg_stream_scan_fgc_payload(const fg_stream_scan* scan, int unit
 /* ... the T.35 bytes from itu_t_t35_country_code on, for fg_context_push_afgs1_t35 ... */
 FG_API fg_status fg_stream_scan_t35_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data,
                                             size_t* size);
+/* ... the unit's AFGS1 payload resolved against the parameter sets the payloads before it
+ * stored, in decode order (AFGS1 stores sets in decode order; units are given in output
+ * order), and written with every set's parameters present (update_grain_flag = 1): push it
+ * with fg_context_push_afgs1_t35 as the units are applied in output order. The raw T.35 bytes
+ * of a payload with update_grain_flag = 0, pushed in output order, would take the set stored
+ * by another picture than decoding does. *data = NULL and *size = 0 when the unit has no
+ * AFGS1 payload, or only a damaged one (one of the unit's warnings then names the element).
+ * Several payloads in one unit: each updates the stored sets, the last one is given. */
+FG_API fg_status fg_stream_scan_afgs1_payload(const fg_stream_scan* scan, int unit, const uint8_t** data,
+                                              size_t* size);
 /* ... the film grain of the frame an AV1 unit shows (update_grain = 0 resolved from its
  * reference slot; apply_grain = 0 for none), for fg_context_push_av1_grain. */
 FG_API fg_status fg_stream_scan_av1_grain(const fg_stream_scan* scan, int unit, fg_av1_grain* out);

@@ -75,9 +75,6 @@ std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::ve
     }
     if (!any_afgs1 && frame_header_grain) return frames_from_frame_headers(scan, warnings);
     if (!any_afgs1) warnings.push_back("no AFGS1 metadata and no film grain in the frame headers: no frame has grain");
-    if (any_afgs1 && frame_header_grain)
-        warnings.push_back("the frame headers also carry film grain (film_grain_params_present = 1); only the AFGS1 "
-                           "metadata is extracted");
 
     Afgs1Reader reader;
     std::optional<Av1SequenceHeader> sequence;
@@ -114,6 +111,22 @@ std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::ve
             }
         }
         frames.push_back(f);
+    }
+    if (frame_header_grain) {
+        // Both: a frame whose own header applies grain keeps it, as AV1 decoders (dav1d,
+        // libaom) apply it and `decode` and the GStreamer element do; AFGS1 gives the others
+        // theirs.
+        std::vector<std::string> header_warnings;
+        const std::vector<Av1FrameParams> headers = frames_from_frame_headers(scan, header_warnings);
+        int kept = 0;
+        for (std::size_t k = 0; k < frames.size() && k < headers.size(); k++)
+            if (headers[k].grain.apply_grain) {
+                frames[k] = headers[k];
+                kept++;
+            }
+        warnings.push_back("the frame headers also carry film grain (film_grain_params_present = 1): the " +
+                           std::to_string(kept) + " frame(s) whose header applies grain keep it, AFGS1 gives the "
+                           "others theirs");
     }
     return frames;
 }

@@ -1,8 +1,10 @@
 #include "bitstream/stream_report.hpp"
 
 #include <cstdio>
+#include <variant>
 
 #include "filmgrain/error.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/fgc_json.hpp"
 
 namespace filmgrain::bitstream {
@@ -19,6 +21,88 @@ std::string hex(const std::vector<uint8_t>& b, std::size_t max_bytes) {
     }
     if (b.size() > max_bytes) s += "...";
     return s;
+}
+
+// Each AFGS1 payload as a decoder reads it: in decode order, updating the 8 stored sets, so a
+// set with update_grain_flag = 0 shows the parameters it resolves to (AFGS1 7.2). Per unit, per
+// T.35 payload: the payload, the reason it is unreadable, or nothing for other T.35 data.
+using Afgs1Read = std::variant<std::monostate, Afgs1Payload, std::string>;
+
+std::vector<std::vector<Afgs1Read>> read_afgs1_payloads(const StreamScan& scan) {
+    Afgs1Reader reader;
+    std::vector<std::vector<Afgs1Read>> out;
+    for (const AccessUnit& u : scan.units) {
+        std::vector<Afgs1Read>& reads = out.emplace_back();
+        for (const FoundT35& t : u.t35) {
+            if (!is_afgs1_t35(t.t35)) {
+                reads.emplace_back();
+                continue;
+            }
+            try {
+                reads.emplace_back(reader.receive(t35_bytes(t.t35), true));
+            } catch (const Error& e) {
+                reads.emplace_back(std::string(e.what()));
+            }
+        }
+    }
+    return out;
+}
+
+std::string afgs1_target_text(const Afgs1SetTarget& t) {
+    std::string s = std::to_string(t.width()) + "x" + std::to_string(t.height()) + " " +
+                    (t.luma_only_flag         ? "4:0:0"
+                     : t.subsampling_y        ? "4:2:0"
+                     : t.subsampling_x        ? "4:2:2"
+                                              : "4:4:4");
+    s += t.video_signal_characteristics_flag ? " " + std::to_string(8 + t.bit_depth_minus8) + "-bit" : " any depth";
+    return s;
+}
+
+std::string afgs1_summary(const Afgs1Payload& payload) {
+    if (!payload.afgs1_enable_flag) return "afgs1_enable_flag 0 (no grain)";
+    std::string s = std::to_string(payload.sets.size()) + " set(s)";
+    for (const Afgs1ParamSet& set : payload.sets) {
+        const Av1FilmGrainParams& p = set.params;
+        s += "; #" + std::to_string(set.film_grain_param_set_idx) + " ";
+        if (!p.apply_grain) {
+            s += "apply_grain_flag 0";
+            continue;
+        }
+        s += afgs1_target_text(set.target) + ", seed " + std::to_string(p.grain_seed);
+        if (!p.update_grain) s += " on the stored parameters";
+        s += ", points Y " + std::to_string(p.num_y_points) +
+             (p.chroma_scaling_from_luma ? std::string(", Cb/Cr from luma")
+                                         : " Cb " + std::to_string(p.num_cb_points) + " Cr " +
+                                               std::to_string(p.num_cr_points)) +
+             ", ar_coeff_lag " + std::to_string(p.ar_coeff_lag);
+    }
+    return s;
+}
+
+json afgs1_to_json(const Afgs1Payload& payload) {
+    json sets = json::array();
+    for (const Afgs1ParamSet& set : payload.sets) {
+        const Av1FilmGrainParams& p = set.params;
+        json j{{"film_grain_param_set_idx", set.film_grain_param_set_idx}, {"apply_grain", p.apply_grain}};
+        if (p.apply_grain) {
+            const Afgs1SetTarget& t = set.target;
+            j.update({{"update_grain", p.update_grain},
+                      {"grain_seed", p.grain_seed},
+                      {"width", t.width()},
+                      {"height", t.height()},
+                      {"luma_only", t.luma_only_flag},
+                      {"subsampling_x", t.subsampling_x},
+                      {"subsampling_y", t.subsampling_y},
+                      {"num_y_points", p.num_y_points},
+                      {"chroma_scaling_from_luma", p.chroma_scaling_from_luma},
+                      {"num_cb_points", p.num_cb_points},
+                      {"num_cr_points", p.num_cr_points},
+                      {"ar_coeff_lag", p.ar_coeff_lag}});
+            if (t.video_signal_characteristics_flag) j["bit_depth"] = 8 + t.bit_depth_minus8;
+        }
+        sets.push_back(j);
+    }
+    return json{{"afgs1_enable_flag", payload.afgs1_enable_flag}, {"sets", sets}};
 }
 
 json t35_to_json(const FoundT35& t) {
@@ -47,7 +131,9 @@ std::string fgc_summary(const FgcParams& p) {
 
 json stream_scan_to_json(const StreamScan& scan) {
     json units = json::array();
-    for (const AccessUnit& u : scan.units) {
+    const std::vector<std::vector<Afgs1Read>> afgs1 = read_afgs1_payloads(scan);
+    for (std::size_t unit = 0; unit < scan.units.size(); unit++) {
+        const AccessUnit& u = scan.units[unit];
         json j{{"index", u.index}, {"offset", u.offset}, {"nal_units", u.nal_units}, {"pictures", u.pictures}};
         if (!u.picture_type.empty()) j["picture_type"] = u.picture_type;
         if (u.poc) j["poc"] = *u.poc;
@@ -76,7 +162,13 @@ json stream_scan_to_json(const StreamScan& scan) {
         }
         j["fgc"] = fgc;
         json t35 = json::array();
-        for (const FoundT35& t : u.t35) t35.push_back(t35_to_json(t));
+        for (std::size_t i = 0; i < u.t35.size(); i++) {
+            json e = t35_to_json(u.t35[i]);
+            const Afgs1Read& read = afgs1[unit][i];
+            if (const auto* p = std::get_if<Afgs1Payload>(&read)) e["afgs1_payload"] = afgs1_to_json(*p);
+            if (const auto* err = std::get_if<std::string>(&read)) e["afgs1_error"] = *err;
+            t35.push_back(e);
+        }
         j["t35"] = t35;
         j["warnings"] = u.warnings;
         units.push_back(j);
@@ -94,7 +186,9 @@ std::string stream_scan_to_text(const StreamScan& scan) {
                     " unit(s); POC: " + scan.poc_support + "\n";
     for (const std::string& w : scan.warnings) s += "warning: " + w + "\n";
     int fgc = 0, t35 = 0;
-    for (const AccessUnit& u : scan.units) {
+    const std::vector<std::vector<Afgs1Read>> afgs1 = read_afgs1_payloads(scan);
+    for (std::size_t unit = 0; unit < scan.units.size(); unit++) {
+        const AccessUnit& u = scan.units[unit];
         s += (scan.codec == StreamCodec::kAv1 ? "TU " : "AU ") + std::to_string(u.index) + " @" + std::to_string(u.offset);
         if (!u.picture_type.empty()) s += " " + u.picture_type;
         if (u.poc) s += " poc=" + std::to_string(*u.poc);
@@ -116,13 +210,18 @@ std::string stream_scan_to_text(const StreamScan& scan) {
             s += std::string("  FGC SEI (") + (f.suffix ? "suffix" : "prefix") + ", " + std::to_string(f.payload.size()) +
                  " bytes): " + (f.params ? fgc_summary(*f.params) : "unparsable: " + f.error) + "\n";
         }
-        for (const FoundT35& t : u.t35) {
+        for (std::size_t i = 0; i < u.t35.size(); i++) {
+            const FoundT35& t = u.t35[i];
             t35++;
             char buf[160];
-            std::snprintf(buf, sizeof buf, "  ITU-T T.35 (country 0x%02X, provider 0x%04X, %zu bytes)%s\n",
+            std::snprintf(buf, sizeof buf, "  ITU-T T.35 (country 0x%02X, provider 0x%04X, %zu bytes)%s",
                           t.t35.country_code, t.t35.provider_code < 0 ? 0 : t.t35.provider_code, t.t35.bytes.size(),
                           is_afgs1_t35(t.t35) ? " AFGS1" : "");
             s += buf;
+            const Afgs1Read& read = afgs1[unit][i];
+            if (const auto* p = std::get_if<Afgs1Payload>(&read)) s += ": " + afgs1_summary(*p);
+            if (const auto* err = std::get_if<std::string>(&read)) s += ": unreadable: " + *err;
+            s += "\n";
         }
         for (const std::string& w : u.warnings) s += "  warning: " + w + "\n";
     }

@@ -19,6 +19,7 @@
 #include "core/thread_pool.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/filmgrain.hpp"
+#include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
 
 struct fg_context {
@@ -674,6 +675,7 @@ struct fg_stream_scan {
         fg_stream_unit info{};
         std::vector<std::vector<uint8_t>> fgc;
         std::vector<std::vector<uint8_t>> t35;
+        std::vector<uint8_t> afgs1;  // resolved in decode order; empty: none
         fg_av1_grain av1_grain{};
         std::vector<std::string> warnings;
     };
@@ -741,10 +743,22 @@ fg_status fg_stream_scan_create(const uint8_t* data, size_t size, int codec, fg_
         // header in force at that unit (decode order).
         std::vector<int> matrix(found.units.size(), 2);
         int current_matrix = 2;
+        // AFGS1 stored sets are updated in decode order, each payload resolved as it comes.
+        filmgrain::Afgs1Reader afgs1_sets;
+        std::vector<std::vector<uint8_t>> afgs1(found.units.size());
+        std::vector<std::vector<std::string>> afgs1_warnings(found.units.size());
         for (std::size_t k = 0; k < found.units.size(); k++) {
             if (found.units[k].av1_sequence_header)
                 current_matrix = found.units[k].av1_sequence_header->matrix_coefficients;
             matrix[k] = current_matrix;
+            for (const bs::FoundT35& t : found.units[k].t35) {
+                if (!bs::is_afgs1_t35(t.t35)) continue;
+                try {
+                    afgs1[k] = filmgrain::write_afgs1_resolved(afgs1_sets.receive(bs::t35_bytes(t.t35), true));
+                } catch (const filmgrain::Error& e) {
+                    afgs1_warnings[k].push_back(std::string("AFGS1 payload skipped: ") + e.what());
+                }
+            }
         }
         for (const bs::AccessUnit* au : bs::units_in_output_order(found)) {
             fg_stream_scan::Unit u;
@@ -757,6 +771,7 @@ fg_status fg_stream_scan_create(const uint8_t* data, size_t size, int codec, fg_
             u.info.output = au->output;
             for (const bs::FoundFgc& f : au->fgc) u.fgc.push_back(f.payload);
             for (const bs::FoundT35& t : au->t35) u.t35.push_back(bs::t35_bytes(t.t35));
+            u.afgs1 = afgs1[std::size_t(au->index)];
             if (au->av1_frame_grain) {
                 u.info.has_av1_grain = 1;
                 u.av1_grain = to_av1_grain(*au->av1_frame_grain, matrix[std::size_t(au->index)]);
@@ -764,6 +779,8 @@ fg_status fg_stream_scan_create(const uint8_t* data, size_t size, int codec, fg_
                 u.av1_grain = default_av1_grain();
             }
             u.warnings = au->warnings;
+            const auto& skipped = afgs1_warnings[std::size_t(au->index)];
+            u.warnings.insert(u.warnings.end(), skipped.begin(), skipped.end());
             u.info.fgc_count = int(u.fgc.size());
             u.info.t35_count = int(u.t35.size());
             u.info.warning_count = int(u.warnings.size());
@@ -799,6 +816,15 @@ fg_status fg_stream_scan_fgc_payload(const fg_stream_scan* scan, int unit, int j
 
 fg_status fg_stream_scan_t35_payload(const fg_stream_scan* scan, int unit, int j, const uint8_t** data, size_t* size) {
     return guarded_scan(scan, [&] { payload_out(scan_unit(scan, unit).t35, j, "j (T.35 payload)", data, size); });
+}
+
+fg_status fg_stream_scan_afgs1_payload(const fg_stream_scan* scan, int unit, const uint8_t** data, size_t* size) {
+    return guarded_scan(scan, [&] {
+        const fg_stream_scan::Unit& u = scan_unit(scan, unit);
+        if (!data || !size) invalid(!data ? "data is NULL" : "size is NULL");
+        *data = u.afgs1.empty() ? nullptr : u.afgs1.data();
+        *size = u.afgs1.size();
+    });
 }
 
 fg_status fg_stream_scan_av1_grain(const fg_stream_scan* scan, int unit, fg_av1_grain* out) {

@@ -309,12 +309,20 @@ std::optional<FrameInfo> feed_session(GstFilmGrain* self, const FilmGrainMetaDat
     }
     if (m->poc) fi.ids = FgcPictureIds{*m->poc, m->idr_pic_id};
     try {
-        // AV1: the frame's own grain first, then AFGS1 (as `filmgrain decode`: libav exports
-        // a frame's grain only when it applies).
+        // The picture's own codec grain first (its AV1 frame header's when it applies, the FGC
+        // SEI of its access unit), then AFGS1: as `filmgrain decode`, which takes the grain
+        // libav exports for the picture before AFGS1.
         if (m->av1_grain && m->av1_grain->apply_grain) {
             Av1FilmGrainParams p = *m->av1_grain;
             p.update_grain = 1;  // resolved by the parser
             session.receive_av1_params(p, 0, m->matrix_coefficients);
+            return fi;
+        }
+        if (!m->fgc_sei.empty()) {
+            const FgcCodec codec = bitstream::fgc_codec(m->codec);
+            for (const std::vector<uint8_t>& sei : m->fgc_sei)
+                session.receive_fgc_sei_payload(sei.data(), sei.size(), codec, fi.ids);
+            st.fgc_in_force = true;
             return fi;
         }
         if (!m->afgs1_error.empty()) {
@@ -325,11 +333,6 @@ std::optional<FrameInfo> feed_session(GstFilmGrain* self, const FilmGrainMetaDat
             session.receive_afgs1_t35(m->afgs1.data(), m->afgs1.size());
             if (m->codec == bitstream::StreamCodec::kAv1 && m->matrix_coefficients != 2) fi.matrix_coefficients = m->matrix_coefficients;
             return fi;
-        }
-        const FgcCodec codec = bitstream::fgc_codec(m->codec);
-        for (const std::vector<uint8_t>& sei : m->fgc_sei) {
-            session.receive_fgc_sei_payload(sei.data(), sei.size(), codec, fi.ids);
-            st.fgc_in_force = true;
         }
     } catch (const Error& e) {
         if (e.code() == ErrorCode::kInvalidArgument) throw;  // ours, not the stream's

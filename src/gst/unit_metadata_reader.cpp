@@ -24,9 +24,7 @@ struct UnitMetadataReader::State {
         for (const bitstream::FoundT35& t : au.t35) {
             if (!bitstream::is_afgs1_t35(t.t35)) continue;
             try {
-                Afgs1Payload resolved = afgs1.receive(bitstream::t35_bytes(t.t35), true);
-                for (Afgs1ParamSet& s : resolved.sets) s.params.update_grain = 1;
-                out.afgs1 = write_afgs1(resolved);
+                out.afgs1 = write_afgs1_resolved(afgs1.receive(bitstream::t35_bytes(t.t35), true));
                 out.afgs1_error.clear();
             } catch (const Error& e) {
                 out.afgs1_error = std::string("AFGS1 payload: ") + e.what();

@@ -97,6 +97,13 @@ struct Afgs1WriteOptions {
 // decreasing point values, a resolution not representable in 12 bits).
 std::vector<uint8_t> write_afgs1(const Afgs1Payload& payload, const Afgs1WriteOptions& options = {});
 
+// A payload as Afgs1Reader::receive resolved it, written with every applied set's parameters
+// present (update_grain_flag = 1). H.26x stores the sets in decode order (AFGS1 7.2), while a
+// player hands pictures over in output order: these bytes mean the same to a receiver that
+// has not seen the payloads before them (a session, fg_context_push_afgs1_t35), whatever the
+// order it gets them in.
+std::vector<uint8_t> write_afgs1_resolved(Afgs1Payload resolved, const Afgs1WriteOptions& options = {});
+
 // The receiver: 8 stored parameter sets that persist across payloads.
 class Afgs1Reader {
 public:

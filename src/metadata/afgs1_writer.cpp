@@ -296,4 +296,9 @@ std::vector<uint8_t> write_afgs1(const Afgs1Payload& payload, const Afgs1WriteOp
     return w.bytes();
 }
 
+std::vector<uint8_t> write_afgs1_resolved(Afgs1Payload resolved, const Afgs1WriteOptions& options) {
+    for (Afgs1ParamSet& s : resolved.sets) s.params.update_grain = 1;
+    return write_afgs1(resolved, options);
+}
+
 }  // namespace filmgrain

@@ -16,6 +16,7 @@
 #include "metadata/afgs1.hpp"
 #include "metadata/av1_params_json.hpp"
 #include "stream_fixtures.hpp"
+#include "tool_under_test.hpp"
 
 using namespace filmgrain;
 using namespace filmgrain::bitstream;
@@ -154,6 +155,37 @@ TEST_P(ExtractAfgs1, JsonHoldsEachFramesSelectedSetAndAppliesAsThePayloads) {
     fs::remove_all(dir);
 }
 
+// A stream with both (aomenc --film-grain-test writes grain into every frame header, AFGS1
+// metadata OBUs added): the frame header's grain wins wherever it applies, as AV1 decoders
+// apply it, in `params extract` and in `decode` alike; the AFGS1 payloads change nothing.
+TEST(ExtractAfgs1, FrameHeaderGrainWinsWhereItApplies) {
+    const fs::path dir = fresh_test_dir("afgs1-and-frame-headers");
+    write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, kFrames, 8);
+    ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=" + std::to_string(kFrames) +
+                            " --cpu-used=6 --film-grain-test=1 -o " + q(dir / "plain.ivf") + " " + q(dir / "src.y4m")));
+    const std::vector<uint8_t> plain = read_bytes(dir / "plain.ivf");
+    const std::vector<uint8_t> both = with_payloads(plain, make_fixture(8));
+    write_bytes(dir / "both.ivf", both);
+    std::vector<std::string> warnings, plain_warnings;
+    const auto from_both = av1_params_from_scan(scan_stream(both.data(), both.size(), StreamCodec::kAv1), warnings);
+    const auto from_headers =
+        av1_params_from_scan(scan_stream(plain.data(), plain.size(), StreamCodec::kAv1), plain_warnings);
+    ASSERT_EQ(from_both.size(), std::size_t(kFrames));
+    ASSERT_EQ(from_headers.size(), std::size_t(kFrames));
+    for (int k = 0; k < kFrames; k++) {
+        EXPECT_EQ(from_headers[std::size_t(k)].grain.apply_grain, 1) << "frame " << k;
+        EXPECT_EQ(from_both[std::size_t(k)].grain, from_headers[std::size_t(k)].grain) << "frame " << k;
+    }
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("the 6 frame(s) whose header applies grain keep it"), std::string::npos) << warnings[0];
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "both.ivf") + " -o " + q(dir / "both.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "plain.ivf") + " -o " + q(dir / "plain.yuv")));
+    const std::vector<uint8_t> decoded = read_bytes(dir / "both.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(kFrames * kWidth * kHeight * 3 / 2));
+    EXPECT_TRUE(decoded == read_bytes(dir / "plain.yuv")) << "the AFGS1 metadata changed decode's pictures";
+    fs::remove_all(dir);
+}
+
 INSTANTIATE_TEST_SUITE_P(Aomenc, ExtractAfgs1,
                          ::testing::Values(EncodedAv1{"--ivf", 8}, EncodedAv1{"--obu", 10}),
                          [](const auto& info) {
@@ -218,7 +250,7 @@ class Afgs1InH26x : public ::testing::TestWithParam<StreamCodec> {};
 TEST_P(Afgs1InH26x, DecodeEqualsApplyWithThePayloadsInOutputOrder) {
     const bool hevc = GetParam() == StreamCodec::kH265;
     if (std::system(hevc ? "command -v x265 >/dev/null 2>&1" : "command -v x264 >/dev/null 2>&1") != 0)
-        GTEST_SKIP() << "the encoder is not installed";
+        FAIL() << "the encoder is not installed (tools/install-deps installs x264 and x265)";
     const fs::path dir = fresh_test_dir(hevc ? "afgs1-h265" : "afgs1-h264");
     constexpr int w = 160, h = 128, frames = 8;
     write_synthetic_y4m(dir / "src.y4m", w, h, frames, 8);
@@ -269,6 +301,15 @@ TEST_P(Afgs1InH26x, DecodeEqualsApplyWithThePayloadsInOutputOrder) {
     ASSERT_TRUE(run_or_fail(tool() + " params extract -q" + picture + q(coded) + " -o " + q(dir / "p.json")));
     ASSERT_TRUE(run_or_fail(tool() + " apply -q" + picture + "-i " + q(dir / "clean.yuv") + " -p " + q(dir / "p.json") +
                             " -o " + q(dir / "extracted.yuv")));
+    // inspect gives each payload's set as read in decode order
+    const auto inspected = run_shell(tool() + " inspect " + q(coded) + " 2>&1");
+    ASSERT_TRUE(inspected.clean_success()) << inspected.output;
+    std::size_t sets = 0;
+    for (std::size_t at = 0; (at = inspected.output.find("AFGS1: 1 set(s); #0 160x128 4:2:0 8-bit, seed", at)) !=
+                             std::string::npos;
+         at++)
+        sets++;
+    EXPECT_EQ(sets, std::size_t(frames - 1)) << inspected.output;
     const auto decoded = read_bytes(dir / "decoded.yuv"), clean = read_bytes(dir / "clean.yuv");
     ASSERT_EQ(decoded.size(), std::size_t(frames * w * h * 3 / 2));
     EXPECT_TRUE(decoded == read_bytes(dir / "applied.yuv")) << "decode and apply --afgs1 differ";
@@ -280,6 +321,44 @@ TEST_P(Afgs1InH26x, DecodeEqualsApplyWithThePayloadsInOutputOrder) {
                                      clean.begin() + long(fb * k));
         EXPECT_EQ(same, order[std::size_t(k)]->index == 3) << "picture " << k;
     }
+    fs::remove_all(dir);
+}
+
+// An H.265 access unit with both an FGC SEI and an AFGS1 payload: the FGC SEI (the codec's own
+// grain, which libavcodec exports for the picture) wins in `decode`, and `params extract`
+// writes the FGC SEI with a warning that the AFGS1 payloads are left out.
+TEST(Afgs1InH26xWithFgcSei, TheFgcSeiWins) {
+    const fs::path dir = fresh_test_dir("afgs1-and-fgc");
+    constexpr int w = 160, h = 128, frames = 8;
+    const std::vector<uint8_t> plain = encode_synthetic_clip(dir, StreamCodec::kH265, w, h, frames, 8);
+    ASSERT_FALSE(plain.empty());
+    const std::vector<uint8_t> fgc = with_fgc_sei_per_access_unit(plain, StreamCodec::kH265);
+    const std::vector<uint8_t> both = insert_sei(fgc, StreamCodec::kH265, [&](int au) {
+        Afgs1Payload pl;
+        Afgs1ParamSet set;
+        set.params = av1_params_for(au);
+        set.target = target(w, h, 8);
+        pl.sets = {set};
+        AccessUnitSei s;
+        s.prefix = {SeiMessage{kSeiPayloadT35, write_afgs1(pl)}};
+        return s;
+    });
+    write_bytes(dir / "fgc.hevc", fgc);
+    write_bytes(dir / "both.hevc", both);
+    const StreamScan scan = scan_stream(both.data(), both.size(), StreamCodec::kH265);
+    for (const AccessUnit& au : scan.units) {
+        EXPECT_EQ(au.fgc.size(), 1u) << "unit " << au.index;
+        EXPECT_EQ(au.t35.size(), 1u) << "unit " << au.index;
+    }
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "both.hevc") + " -o " + q(dir / "both.yuv")));
+    ASSERT_TRUE(run_or_fail(tool() + " decode -q " + q(dir / "fgc.hevc") + " -o " + q(dir / "fgc.yuv")));
+    const std::vector<uint8_t> decoded = read_bytes(dir / "both.yuv");
+    ASSERT_EQ(decoded.size(), std::size_t(frames * w * h * 3 / 2));
+    EXPECT_TRUE(decoded == read_bytes(dir / "fgc.yuv")) << "the AFGS1 payloads changed decode's pictures";
+    const auto extract = run_shell(tool() + " params extract " + q(dir / "both.hevc") + " -o " + q(dir / "p.json") +
+                                   " 2>&1");
+    ASSERT_TRUE(extract.clean_success()) << extract.output;
+    EXPECT_NE(extract.output.find("also carries AFGS1 payloads"), std::string::npos) << extract.output;
     fs::remove_all(dir);
 }
 

@@ -18,7 +18,11 @@
 #include "metadata/bit_reader.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
+#include "core/frame_buffer.hpp"
+#include "filmgrain/session.hpp"
 #include "stream_fixtures.hpp"
+#include "tool_under_test.hpp"
+#include <nlohmann/json.hpp>
 
 using namespace filmgrain;
 using namespace filmgrain::bitstream;
@@ -379,5 +383,52 @@ TEST(H266Afgs1, ParamsExtractThenApplyEqualsApplyWithThePayloadsInOutputOrder) {
                              clean.begin() + long(fb * k)),
                   k == 3)
             << "picture " << k;
+
+    // The session fed in output order with each unit's payload as the scan resolves it in
+    // decode order (write_afgs1_resolved: what fg_stream_scan_afgs1_payload and filmgrainparse
+    // hand over) gives the same pictures. Unit 6's raw bytes would take the set unit 1 stored
+    // (output before it) and give output picture 5 other grain.
+    const StreamScan scan = scan_stream(stream.data(), stream.size(), StreamCodec::kH266);
+    Afgs1Reader stored;
+    std::vector<std::vector<uint8_t>> resolved(scan.units.size());
+    for (std::size_t i = 0; i < scan.units.size(); i++)
+        for (const FoundT35& t : scan.units[i].t35) resolved[i] = write_afgs1_resolved(stored.receive(t35_bytes(t.t35)));
+    const auto applied = test_support::read_bytes(dir / "applied.yuv");
+    for (const bool raw : {false, true}) {
+        Session session;
+        for (std::size_t k = 0; k < units_in_output.size(); k++) {
+            const int unit = units_in_output[k];
+            const std::vector<uint8_t>& bytes = raw ? payloads[std::size_t(unit)] : resolved[std::size_t(unit)];
+            if (!bytes.empty()) session.receive_afgs1_t35(bytes.data(), bytes.size());
+            FrameBuffer in(kAfgs1Width, kAfgs1Height, PixelFormat{ChromaFormat::k420, 8}), out = in;
+            std::copy(clean.begin() + long(fb * k), clean.begin() + long(fb * (k + 1)), in.bytes());
+            session.apply(in.view(), out.view());
+            const bool same = std::equal(out.bytes(), out.bytes() + fb, applied.begin() + long(fb * k));
+            EXPECT_EQ(same, !raw || unit != 6) << (raw ? "raw" : "resolved") << " payloads, picture " << k;
+        }
+    }
+
+    // inspect reads each payload in decode order: unit 6's set shows the seed it signals on the
+    // parameters it reuses, unit 0's two sets their two target pictures.
+    const auto text = test_support::run_shell(tool() + " inspect " + q(dir / "s.266") + " 2>&1");
+    ASSERT_TRUE(text.clean_success()) << text.output;
+    EXPECT_NE(text.output.find("AFGS1: 2 set(s); #1 48x32 4:2:0 8-bit"), std::string::npos) << text.output;
+    EXPECT_NE(text.output.find("#0 96x64 4:2:0 8-bit, seed 4321 on the stored parameters"), std::string::npos)
+        << text.output;
+    const auto js = test_support::run_shell(tool() + " inspect --json " + q(dir / "s.266") + " 2>/dev/null");
+    ASSERT_TRUE(js.clean_success()) << js.output;
+    const nlohmann::json units = nlohmann::json::parse(js.output).at("access_units");
+    ASSERT_EQ(units.size(), scan.units.size());
+    for (std::size_t i = 0; i < units.size(); i++) {
+        const nlohmann::json& t35 = units[i].at("t35");
+        ASSERT_EQ(t35.size(), payloads[i].empty() ? 0u : 1u) << "unit " << i;
+        if (payloads[i].empty()) continue;
+        const nlohmann::json& set = t35[0].at("afgs1_payload").at("sets").back();
+        const Av1FilmGrainParams want = afgs1_expected(int(i));
+        EXPECT_EQ(set.at("grain_seed").get<long long>(), want.grain_seed) << "unit " << i;
+        EXPECT_EQ(set.at("num_y_points").get<long long>(), want.num_y_points) << "unit " << i;
+        EXPECT_EQ(set.at("update_grain").get<long long>(), i == 6 ? 0 : 1) << "unit " << i;
+        EXPECT_EQ(set.at("width").get<long long>(), kAfgs1Width) << "unit " << i;
+    }
     if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }

@@ -261,6 +261,57 @@ TEST_P(CapiAfgs1Conformance, T35PayloadsPerPicture) {
     EXPECT_EQ(mismatches, 0);
 }
 
+// The case's coded H.265 stream (AFGS1 in T.35 SEI, B-frames) read by the library's scanner
+// instead of the case's per-picture files: each unit in output order hands over its payload
+// resolved in decode order (fg_stream_scan_afgs1_payload), and every picture must give its
+// golden. The raw T.35 bytes are given too and must be the case's file for that picture.
+TEST(CapiAfgs1Stream, HevcSeiScannedAndAppliedInOutputOrderGivesEveryGolden) {
+    const ConformanceCase c = load_case("afgs1-352x288-420p8-bframes");
+    const std::vector<uint8_t> stream = read_whole_file((fs::path(c.dir) / "stream.hevc").string());
+    fg_stream_scan* scan = nullptr;
+    char message[256] = "";
+    ASSERT_EQ(fg_stream_scan_create(stream.data(), stream.size(), FG_STREAM_H265, &scan, message, sizeof message),
+              FG_OK)
+        << message;
+    ASSERT_EQ(fg_stream_scan_unit_count(scan), c.frames);
+    fg_options o;
+    fg_options_init(&o);
+    Context ctx(o);
+    ASSERT_NE(ctx.ctx, nullptr);
+    int reordered = 0, with_payload = 0;
+    for (int k = 0; k < c.frames; k++) {
+        SCOPED_TRACE("output picture " + std::to_string(k));
+        fg_stream_unit u{};
+        ASSERT_EQ(fg_stream_scan_unit(scan, k, &u), FG_OK);
+        reordered += u.decode_index != k;
+        const uint8_t* data = nullptr;
+        size_t size = 0;
+        ASSERT_EQ(fg_stream_scan_afgs1_payload(scan, k, &data, &size), FG_OK) << fg_stream_scan_last_error(scan);
+        const auto file = afgs1_payload(c, k);
+        ASSERT_EQ(size > 0, file.has_value());
+        if (size) {
+            with_payload++;
+            const uint8_t* raw = nullptr;
+            size_t raw_size = 0;
+            ASSERT_EQ(fg_stream_scan_t35_payload(scan, k, 0, &raw, &raw_size), FG_OK);
+            EXPECT_TRUE(std::vector<uint8_t>(raw, raw + raw_size) == *file) << "T.35 bytes differ from the case's file";
+            ASSERT_EQ(fg_context_push_afgs1_t35(ctx.ctx, data, size), FG_OK) << fg_last_error(ctx.ctx);
+        }
+        EXPECT_EQ(apply_frame(c, ctx.ctx, k, nullptr), c.expected_md5(k));
+    }
+    EXPECT_GT(reordered, 0) << "B-frames: decode order differs from output order";
+    EXPECT_EQ(with_payload, c.frames);
+    // A unit index out of range names the argument and its range; NULL outputs are refused.
+    const uint8_t* data = nullptr;
+    size_t size = 0;
+    EXPECT_EQ(fg_stream_scan_afgs1_payload(scan, c.frames, &data, &size), FG_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(fg_stream_scan_last_error(scan)).find("unit = " + std::to_string(c.frames)),
+              std::string::npos)
+        << fg_stream_scan_last_error(scan);
+    EXPECT_EQ(fg_stream_scan_afgs1_payload(scan, 0, nullptr, &size), FG_ERROR_INVALID_ARGUMENT);
+    fg_stream_scan_destroy(scan);
+}
+
 INSTANTIATE_TEST_SUITE_P(Cases, CapiAfgs1Conformance, ::testing::ValuesIn(list_cases("afgs1-")),
                          [](const auto& info) {
                              std::string n = info.param;
