@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bitstream/metadata_insertion.hpp"
+#include "filmgrain/error.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
 #include "stream_fixtures.hpp"
@@ -26,8 +27,16 @@ constexpr int kWidth = 160, kHeight = 128, kFrames = 12;
 // -f: a crash in an element ends the process (gst-launch otherwise spins waiting for a
 // debugger); -q leaves out the state messages, not the warnings and errors the elements post,
 // which `verbose` keeps in the log.
+// With FILMGRAIN_GST_LAUNCH_PRELOAD set (CTest's asan_ubsan.gst_malformed_pipelines, whose
+// GST_PLUGIN_PATH names the plugin built with ASan/UBSan), the GStreamer tools run with those
+// runtimes preloaded: a program built without them cannot load such a plugin otherwise.
+std::string gst_tool(const char* name) {
+    const char* preload = std::getenv("FILMGRAIN_GST_LAUNCH_PRELOAD");
+    return (preload && *preload ? "LD_PRELOAD=" + q(preload) + " " : std::string()) + name;
+}
+
 std::string gst_launch(const std::string& pipeline, const fs::path& log, bool verbose = false) {
-    return std::string("gst-launch-1.0 -f ") + (verbose ? "" : "-q ") + pipeline + " > " + q(log) + " 2>&1";
+    return gst_tool("gst-launch-1.0") + " -f " + (verbose ? "" : "-q ") + pipeline + " > " + q(log) + " 2>&1";
 }
 
 std::string text_of(const fs::path& p) {
@@ -300,63 +309,138 @@ std::vector<uint8_t> invalid_fgc_payload() {
     return write_fgc_sei_payload(p, FgcCodec::kHevc);
 }
 
+// The syntax element the library's parser names when `parse` meets the end of a cut payload
+// ("payload truncated while reading <field> (at bit n ...)"): what the element must name too.
+template <class Parse>
+std::string truncated_field(Parse&& parse) {
+    try {
+        parse();
+    } catch (const Error& e) {
+        const std::string m = e.what(), marker = "while reading ";
+        const std::size_t at = m.find(marker), end = m.find(" (at bit");
+        if (at != std::string::npos && end != std::string::npos && end > at)
+            return m.substr(at + marker.size(), end - at - marker.size());
+        ADD_FAILURE() << "no field in: " << m;
+        return m;
+    }
+    ADD_FAILURE() << "the cut payload parsed";
+    return "?";
+}
+
+// The plugin gst-launch loads is the one in GST_PLUGIN_PATH (under asan_ubsan.* the
+// sanitized build), and nothing a sanitizer reports is in the pipeline's log.
+void expect_plugin_from_plugin_path(const fs::path& dir) {
+    const char* path = std::getenv("GST_PLUGIN_PATH");
+    if (!path || !*path) return;
+    ASSERT_TRUE(run_or_fail(gst_tool("gst-inspect-1.0") + " filmgrain > " + q(dir / "inspect.txt") + " 2>&1"));
+    const std::string inspect = text_of(dir / "inspect.txt");
+    const std::size_t at = inspect.find("Filename");
+    ASSERT_NE(at, std::string::npos) << inspect;
+    const std::string line = inspect.substr(at, inspect.find('\n', at) - at);
+    const std::string first_dir = std::string(path).substr(0, std::string(path).find(':'));
+    EXPECT_NE(line.find(fs::path(first_dir).lexically_normal().string() + "/"), std::string::npos) << line;
+}
+
+// What the filmgrain element itself posted (`kind`: WARNING or ERROR), from gst-launch's log:
+// filmgrainparse warns about a damaged unit too, and that must not stand in for the filter's
+// message.
+std::string filter_messages(const std::string& log, const std::string& kind) {
+    const std::string prefix = kind + ": from element /GstPipeline:pipeline0/GstFilmGrain:filmgrain0: ";
+    std::string out;
+    for (std::size_t at = log.find(prefix); at != std::string::npos; at = log.find(prefix, at + 1))
+        out += log.substr(at + prefix.size(), log.find('\n', at) - at - prefix.size()) + "\n";
+    return out;
+}
+
+void expect_no_sanitizer_report(const std::string& log) {
+    for (const char* report : {"AddressSanitizer", "LeakSanitizer", "runtime error:"})
+        EXPECT_EQ(log.find(report), std::string::npos) << log;
+}
+
 }  // namespace
 
 // Malformed metadata in the stream: passthrough keeps the pipeline running and warns naming the
-// field; error stops it with a message naming the field.
+// field; error stops it with a message naming the field. CTest also runs these pipelines with
+// the plugin built with ASan/UBSan (asan_ubsan.gst_malformed_pipelines).
 TEST(GstMalformed, FgcSeiWarnsOrStopsNamingTheField) {
     const fs::path dir = fresh_test_dir("gst-malformed-fgc");
+    expect_plugin_from_plugin_path(dir);
     const auto raw = encode_synthetic_clip(dir, StreamCodec::kH265, kWidth, kHeight, 6, 8);
     ASSERT_FALSE(raw.empty());
     const auto bad = invalid_fgc_payload();
-    // truncated SEI in unit 1, an invalid one in unit 3, valid ones elsewhere
-    write_bytes(dir / "bad.hevc", with_fgc_sei_per_access_unit(raw, StreamCodec::kH265, [&](int au) {
-                    std::vector<uint8_t> p = write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc);
-                    if (au == 1) p.resize(3);
-                    if (au == 3) p = bad;
-                    return p;
-                }));
-    const std::string pipeline = "filesrc location=" + q(dir / "bad.hevc") +
-                                 " ! h265parse ! filmgrainparse ! avdec_h265 ! filmgrain on-invalid=";
+    auto cut = write_fgc_sei_payload(fgc_params_for(1), FgcCodec::kHevc);
+    cut.resize(3);
+    const std::string cut_field = truncated_field([&] { parse_fgc_sei_payload(cut, FgcCodec::kHevc); });
+    // `bad.hevc`: the truncated SEI in unit 1, the invalid one in unit 3, valid ones elsewhere;
+    // `cut.hevc` and `invalid.hevc` hold one of the two each, for the error runs (B-frames put
+    // pictures out of decode order: with both, either may come first)
+    for (const char* name : {"bad", "cut", "invalid"})
+        write_bytes(dir / (std::string(name) + ".hevc"),
+                    with_fgc_sei_per_access_unit(raw, StreamCodec::kH265, [&](int au) {
+                        if (au == 1 && std::string(name) != "invalid") return cut;
+                        if (au == 3 && std::string(name) != "cut") return bad;
+                        return write_fgc_sei_payload(fgc_params_for(au), FgcCodec::kHevc);
+                    }));
+    const auto pipeline = [&](const char* stream) {
+        return "filesrc location=" + q(dir / (std::string(stream) + ".hevc")) +
+               " ! h265parse ! filmgrainparse ! avdec_h265 ! filmgrain on-invalid=";
+    };
     const int rc_pass = std::system(
-        gst_launch(pipeline + "passthrough ! filesink location=" + q(dir / "pass.yuv"), dir / "pass.txt", true).c_str());
-    EXPECT_EQ(rc_pass, 0) << text_of(dir / "pass.txt");
+        gst_launch(pipeline("bad") + "passthrough ! filesink location=" + q(dir / "pass.yuv"), dir / "pass.txt", true)
+            .c_str());
     const std::string pass_log = text_of(dir / "pass.txt");
-    EXPECT_NE(pass_log.find("WARNING"), std::string::npos) << pass_log;
-    EXPECT_NE(pass_log.find("comp_model_value"), std::string::npos) << pass_log;
+    EXPECT_EQ(rc_pass, 0) << pass_log;
+    // each bad payload warned about, naming its field (the invalid one its value and range too)
+    const std::string warnings = filter_messages(pass_log, "WARNING");
+    EXPECT_NE(warnings.find("comp_model_value[0][0][0] = 5000"), std::string::npos) << pass_log;
+    EXPECT_NE(warnings.find("allowed 0..255"), std::string::npos) << pass_log;
+    EXPECT_NE(warnings.find(cut_field), std::string::npos) << cut_field << " not named:\n" << pass_log;
+    expect_no_sanitizer_report(pass_log);
     EXPECT_EQ(read_bytes(dir / "pass.yuv").size(), std::size_t(6 * kWidth * kHeight * 3 / 2));
-    const int rc_error = std::system(
-        gst_launch(pipeline + "error ! filesink location=" + q(dir / "err.yuv"), dir / "err.txt", true).c_str());
-    EXPECT_NE(rc_error, 0);
-    const std::string err_log = text_of(dir / "err.txt");
-    EXPECT_NE(err_log.find("ERROR"), std::string::npos) << err_log;
-    EXPECT_TRUE(err_log.find("comp_model_value") != std::string::npos || err_log.find("truncated") != std::string::npos)
-        << err_log;
+    for (const auto& [stream, field] : {std::pair<std::string, std::string>{"cut", cut_field},
+                                        std::pair<std::string, std::string>{"invalid", "comp_model_value[0][0][0] = 5000"}}) {
+        SCOPED_TRACE(stream);
+        const fs::path log = dir / ("err-" + stream + ".txt");
+        const int rc_error = std::system(
+            gst_launch(pipeline(stream.c_str()) + "error ! filesink location=" + q(dir / "err.yuv"), log, true).c_str());
+        const std::string err_log = text_of(log);
+        EXPECT_NE(rc_error, 0) << err_log;
+        EXPECT_NE(filter_messages(err_log, "ERROR").find(field), std::string::npos) << field << " not named:\n" << err_log;
+        expect_no_sanitizer_report(err_log);
+    }
     fs::remove_all(dir);
 }
 
 TEST(GstMalformed, Afgs1PayloadWarnsOrStopsNamingTheField) {
     const fs::path dir = fresh_test_dir("gst-malformed-afgs1");
+    expect_plugin_from_plugin_path(dir);
     write_synthetic_y4m(dir / "src.y4m", kWidth, kHeight, 4, 8);
     ASSERT_TRUE(run_or_fail("aomenc --quiet --ivf --limit=4 --cpu-used=6 -o " + q(dir / "raw.ivf") + " " +
                             q(dir / "src.y4m")));
+    std::vector<uint8_t> cut = afgs1_payload_for(2, 8);
+    cut.resize(6);  // cut inside the first set
+    const std::string cut_field = truncated_field([&] { Afgs1Reader().receive(cut); });
     write_bytes(dir / "bad.ivf", insert_av1_t35(read_bytes(dir / "raw.ivf"), [&](int tu) {
-                    std::vector<uint8_t> p = afgs1_payload_for(tu == 4 ? 0 : tu, 8);
-                    if (tu == 2) p.resize(6);  // cut inside the first set
-                    return std::vector<std::vector<uint8_t>>{p};
+                    return std::vector<std::vector<uint8_t>>{tu == 2 ? cut : afgs1_payload_for(tu == 4 ? 0 : tu, 8)};
                 }));
     const std::string pipeline = "filesrc location=" + q(dir / "bad.ivf") +
                                  " ! ivfparse ! av1parse ! filmgrainparse ! av1dec ! filmgrain on-invalid=";
     const int rc_pass = std::system(
         gst_launch(pipeline + "passthrough ! filesink location=" + q(dir / "pass.yuv"), dir / "pass.txt", true).c_str());
-    EXPECT_EQ(rc_pass, 0) << text_of(dir / "pass.txt");
     const std::string pass_log = text_of(dir / "pass.txt");
-    EXPECT_NE(pass_log.find("WARNING"), std::string::npos) << pass_log;
-    EXPECT_NE(pass_log.find("AFGS1 payload"), std::string::npos) << pass_log;
+    EXPECT_EQ(rc_pass, 0) << pass_log;
+    const std::string warnings = filter_messages(pass_log, "WARNING");
+    EXPECT_NE(warnings.find("AFGS1 payload"), std::string::npos) << pass_log;
+    EXPECT_NE(warnings.find(cut_field), std::string::npos) << cut_field << " not named:\n" << pass_log;
+    expect_no_sanitizer_report(pass_log);
     EXPECT_EQ(read_bytes(dir / "pass.yuv").size(), std::size_t(4 * kWidth * kHeight * 3 / 2));
     const int rc_error = std::system(
         gst_launch(pipeline + "error ! filesink location=" + q(dir / "err.yuv"), dir / "err.txt", true).c_str());
-    EXPECT_NE(rc_error, 0);
-    EXPECT_NE(text_of(dir / "err.txt").find("AFGS1 payload"), std::string::npos) << text_of(dir / "err.txt");
+    const std::string err_log = text_of(dir / "err.txt");
+    EXPECT_NE(rc_error, 0) << err_log;
+    const std::string errors = filter_messages(err_log, "ERROR");
+    EXPECT_NE(errors.find("AFGS1 payload"), std::string::npos) << err_log;
+    EXPECT_NE(errors.find(cut_field), std::string::npos) << cut_field << " not named:\n" << err_log;
+    expect_no_sanitizer_report(err_log);
     fs::remove_all(dir);
 }
