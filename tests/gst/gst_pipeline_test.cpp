@@ -299,6 +299,57 @@ TEST(GstStaticParams, EqualsApplyOnTheSameFrames) {
     fs::remove_all(dir);
 }
 
+// The form, `filmgrain params=P.json`: JSON parameter files written by `filmgrain params
+// convert`, of both models (FGC from the conformance payload, AV1 from a libaom grain table).
+// The FGC file gives the pictures the payload gives (the element reads every form the same way).
+TEST(GstStaticParams, JsonParameterFileEqualsApply) {
+    const fs::path dir = fresh_test_dir("gst-static-json");
+    const fs::path fgc = fs::path(FILMGRAIN_SOURCE_DIR) / "conformance/rdd5_352x288_420p10/frame0.fgc.bin";
+    ASSERT_TRUE(run_or_fail(tool() + " params convert -q " + q(fgc) + " -o " + q(dir / "fgc.json")));
+    write_bytes(dir / "grain.tbl", [] {
+        const std::string t =
+            "filmgrn1\n"
+            "E 0 9223372036854775807 1 46083 1\n"
+            "\tp 3 8 0 9 0 1 144 224 437 42 74 494\n"
+            "\tsY 14  6 0 18 196 21 140 42 233 55 0 87 0 124 0 128 30 129 0 183 0 184 0 189 0 221 60 228 99\n"
+            "\tsCb 2 196 54 213 0\n"
+            "\tsCr 4 79 108 100 33 184 50 245 71\n"
+            "\tcY -20 9 8 16 33 -25 -6 29 -7 38 -22 1 -25 40 6 -30 4 23 -25 34 -16 -24 26 -23\n"
+            "\tcCb 18 -27 37 37 11 19 32 33 12 16 22 1 33 0 38 27 -10 -18 -12 38 12 -37 25 18 25\n"
+            "\tcCr 6 -35 -1 -20 33 -8 -5 -30 20 25 -10 0 4 6 -7 8 11 -2 3 0 5 -9 10 1 30\n";
+        return std::vector<uint8_t>(t.begin(), t.end());
+    }());
+    ASSERT_TRUE(run_or_fail(tool() + " params convert -q " + q(dir / "grain.tbl") + " --to json -o " +
+                            q(dir / "av1.json")));
+    for (const char* json : {"fgc.json", "av1.json"}) {
+        const std::string text = text_of(dir / json);
+        ASSERT_TRUE(!text.empty() && text.front() == '{') << json << ": " << text.substr(0, 80);
+    }
+    const std::string size = std::to_string(kWidth) + "x" + std::to_string(kHeight);
+    const std::string src = "videotestsrc num-buffers=5 pattern=ball ! video/x-raw,format=I420_10LE,width=" +
+                            std::to_string(kWidth) + ",height=" + std::to_string(kHeight);
+    ASSERT_TRUE(run_or_fail(gst_launch(src + " ! filesink location=" + q(dir / "clean.yuv"), dir / "log.txt")));
+    const auto clean = read_bytes(dir / "clean.yuv");
+    ASSERT_EQ(clean.size(), std::size_t(5 * kWidth * kHeight * 3 / 2 * 2));
+    for (const char* json : {"fgc.json", "av1.json"}) {
+        SCOPED_TRACE(json);
+        const fs::path gst = dir / (std::string(json) + ".gst.yuv"), applied = dir / (std::string(json) + ".apply.yuv");
+        ASSERT_TRUE(run_or_fail(gst_launch(src + " ! filmgrain params=" + q(dir / json) + " ! filesink location=" + q(gst),
+                                           dir / "log.txt")));
+        ASSERT_TRUE(run_or_fail(tool() + " apply -q --size " + size + " --pix-fmt yuv420p10le -i " +
+                                q(dir / "clean.yuv") + " -p " + q(dir / json) + " -o " + q(applied)));
+        const auto out = read_bytes(gst);
+        EXPECT_EQ(out.size(), clean.size());
+        EXPECT_TRUE(out == read_bytes(applied)) << "the pipeline differs from `filmgrain apply`";
+        EXPECT_NE(out, clean);
+    }
+    ASSERT_TRUE(run_or_fail(gst_launch(src + " ! filmgrain params=" + q(fgc) + " ! filesink location=" +
+                                           q(dir / "payload.gst.yuv"),
+                                       dir / "log.txt")));
+    EXPECT_TRUE(read_bytes(dir / "payload.gst.yuv") == read_bytes(dir / "fgc.json.gst.yuv"));
+    fs::remove_all(dir);
+}
+
 namespace {
 
 // An FGC SEI with a comp_model_value far outside what RDD 5 allows: parsable, invalid.
