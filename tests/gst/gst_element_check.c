@@ -6,7 +6,10 @@
  *   - threads=1 and threads=2 give the same bytes;
  *   - bad payloads: on-invalid=passthrough posts a warning naming the field and keeps going,
  *     error posts an error naming it; filmgrainparse on damaged coded units warns and
- *     passes them on.
+ *     passes them on;
+ *   - a picture without grain (no metadata or parameters, or enabled=false) leaves as the
+ *     same GstBuffer and GstMemory it came in; one with grain is copied only when someone
+ *     else holds it.
  * Payload files are written with libfilmgrain's C API. The suite also runs against the
  * plugin built with ASan/UBSan (CTest asan_ubsan.gst_element_check). */
 #include <gst/app/gstappsink.h>
@@ -339,6 +342,82 @@ GST_START_TEST(test_parse_survives_damaged_units) {
 }
 GST_END_TEST;
 
+/* What leaves filmgrain for one picture pushed through a harness: the same GstBuffer and
+ * GstMemory as went in (pointer equality), and whether the bytes changed. With `hold`, the test
+ * keeps its own reference to the input, so the element may not write into it. */
+typedef struct {
+    gboolean same_buffer, same_memory, input_bytes_kept, output_changed;
+} Passage;
+
+enum { kPicW = 64, kPicH = 48 };
+
+static Passage pass_one(const gchar* props, gboolean hold) {
+    gchar* desc = g_strdup_printf("filmgrain %s", props);
+    GstHarness* h = gst_harness_new_parse(desc);
+    g_free(desc);
+    gst_harness_set_src_caps_str(h, "video/x-raw,format=I420,width=64,height=48,framerate=25/1");
+    const gsize size = kPicW * kPicH * 3 / 2;
+    GstBuffer* in = gst_buffer_new_allocate(NULL, size, NULL);
+    GstMapInfo map;
+    fail_unless(gst_buffer_map(in, &map, GST_MAP_WRITE));
+    for (gsize i = 0; i < size; i++) map.data[i] = (guint8)(40 + (i * 7 + i / kPicW * 3) % 160);
+    GBytes* before = g_bytes_new(map.data, map.size);
+    gst_buffer_unmap(in, &map);
+    const GstMemory* memory_in = gst_buffer_peek_memory(in, 0);
+    const GstBuffer* buffer_in = in;
+    if (hold) gst_buffer_ref(in);
+    fail_unless_equals_int(gst_harness_push(h, in), GST_FLOW_OK);
+    GstBuffer* out = gst_harness_pull(h);
+    fail_unless(out != NULL);
+    Passage p;
+    p.same_buffer = out == buffer_in;
+    p.same_memory = gst_buffer_n_memory(out) == 1 && gst_buffer_peek_memory(out, 0) == memory_in;
+    fail_unless(gst_buffer_map(out, &map, GST_MAP_READ));
+    p.output_changed = map.size != size || memcmp(map.data, g_bytes_get_data(before, NULL), size) != 0;
+    gst_buffer_unmap(out, &map);
+    p.input_bytes_kept = TRUE;
+    if (hold) {
+        fail_unless(gst_buffer_map(in, &map, GST_MAP_READ));
+        p.input_bytes_kept = memcmp(map.data, g_bytes_get_data(before, NULL), size) == 0;
+        gst_buffer_unmap(in, &map);
+        gst_buffer_unref(in);
+    }
+    gst_buffer_unref(out);
+    g_bytes_unref(before);
+    gst_harness_teardown(h);
+    return p;
+}
+
+/* The issue: "A picture without grain is passed through without a copy". */
+GST_START_TEST(test_picture_without_grain_is_not_copied) {
+    gchar* sei = write_sei_file("nocopy.fgc.bin", 90, 0);
+    gchar* with_grain = g_strdup_printf("params=\"%s\"", sei);
+    gchar* disabled = g_strdup_printf("params=\"%s\" enabled=false", sei);
+    /* no meta and no parameters, and grain switched off: the input buffer itself leaves,
+     * though the test holds a reference (a copy would be the only way to write it) */
+    const gchar* without[] = {"", disabled};
+    for (int i = 0; i < 2; i++) {
+        Passage p = pass_one(without[i], TRUE);
+        fail_unless(p.same_buffer, "filmgrain %s: another GstBuffer left than came in", without[i]);
+        fail_unless(p.same_memory, "filmgrain %s: another GstMemory left than came in", without[i]);
+        fail_if(p.output_changed, "filmgrain %s: the picture changed", without[i]);
+    }
+    /* with grain on a buffer someone else holds: a copy gets the grain, the holder's bytes stay */
+    Passage held = pass_one(with_grain, TRUE);
+    fail_if(held.same_buffer, "grain was written into the input GstBuffer");
+    fail_if(held.same_memory, "grain was written into the input GstMemory");
+    fail_unless(held.input_bytes_kept, "the input's bytes changed");
+    fail_unless(held.output_changed, "no grain");
+    /* with grain on a buffer the element holds alone: written in place, no copy either */
+    Passage alone = pass_one(with_grain, FALSE);
+    fail_unless(alone.same_memory, "a picture the element held alone was copied");
+    fail_unless(alone.output_changed, "no grain");
+    g_free(with_grain);
+    g_free(disabled);
+    g_free(sei);
+}
+GST_END_TEST;
+
 static Suite* filmgrain_elements_suite(void) {
     Suite* s = suite_create("filmgrain elements");
     TCase* tc = tcase_create("elements");
@@ -349,6 +428,7 @@ static Suite* filmgrain_elements_suite(void) {
     tcase_add_test(tc, test_two_elements_in_two_threads);
     tcase_add_test(tc, test_bad_payload_warns_or_stops_naming_the_field);
     tcase_add_test(tc, test_parse_survives_damaged_units);
+    tcase_add_test(tc, test_picture_without_grain_is_not_copied);
     return s;
 }
 
