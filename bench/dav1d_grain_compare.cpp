@@ -1,7 +1,7 @@
 // In-process A/B of AV1 grain synthesis against dav1d's own: one libdav1d decoder (grain
 // not applied) decodes an IVF stream, and every decoded picture gets its grain twice, from
 // dav1d_apply_grain (dav1d's optimized kernels, into a picture from dav1d's pool) and from
-// filmgrain's Av1PictureSynthesis (into a reused frame), one thread each. The two are timed on
+// filmgrain's Session (into a reused frame), one thread each. The two are timed on
 // the same picture in the same state of the decode loop, first one then the other in
 // alternating order, so that the whole-process noise of tools/bench-compare (two decodes
 // per difference) is gone. Both outputs are compared: a picture where they differ is an
@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "av1/av1_picture_synthesis.hpp"
+#include "filmgrain/session.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
 #include "filmgrain/av1_params.hpp"
@@ -130,7 +130,9 @@ void run(const std::string& path, Timings& t) {
     s.apply_grain = 0;
     Dav1dContext* ctx = nullptr;
     check(dav1d_open(&ctx, &s), "dav1d_open");
-    av1::Av1PictureSynthesis synth(1);
+    SessionOptions options;
+    options.threads = 1;
+    Session synth(options);
     FrameBuffer ours;
     std::size_t pos = le32(file.data() + 6) & 0xFFFF;  // header size
     auto take_pictures = [&] {
@@ -154,7 +156,8 @@ void run(const std::string& path, Timings& t) {
                 };
                 auto time_ours = [&] {
                     const double t0 = thread_cpu_ms();
-                    synth.apply(params, src, ours.view(), mc);
+                    synth.receive_av1_params(params, 0, mc);
+                    synth.apply(src, ours.view());
                     o_ms = thread_cpu_ms() - t0;
                 };
                 if (t.ours.size() % 2) time_dav1d(), time_ours();

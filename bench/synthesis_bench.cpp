@@ -13,13 +13,9 @@
 #include "bench_main.hpp"
 #include "bench_params.hpp"
 #include "bench_pictures.hpp"
-#include "av1/av1_picture_synthesis.hpp"
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
-#include "fgc/fgc_stream_synthesis.hpp"
-#include "fgc/vfgs/vfgs_frame_setup.hpp"
-#include "fgc/vfgs/vfgs_frame_synthesis.hpp"
-#include "fgc/vfgs/vfgs_random.hpp"
+#include "filmgrain/session.hpp"
 
 using namespace filmgrain;
 
@@ -44,51 +40,52 @@ FgcParams fgc_params(int bd) {
 }
 
 
-// args: width, height, bit depth, threads, optimized (0/1), flavour (0 rdd5, 1 vtm)
-void BM_Fgc(benchmark::State& state) {
-    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    FgcOptions o;
+// Every benchmark drives the stream session, as every entry point does (the C API, the tool,
+// GStreamer, Python): what a decoder pays per picture, session checks included. The parameter
+// set arrives once and persists (FGC) or changes its seed every frame (AV1), as in streams;
+// the first picture's set-up (templates, vfgs tables and stripe states) is outside the timing.
+Session make_session(FgcFlavour flavour, const benchmark::State& state) {
+    SessionOptions o;
+    o.flavour = flavour;
     o.threads = int(state.range(3));
     o.reference_kernels = state.range(4) == 0;
-    o.flavour = state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5;
-    FgcStreamSynthesis s(o);
-    s.receive_sei(fgc_params(bd));
+    return Session(o);
+}
+
+void run_fgc(benchmark::State& state, FgcFlavour flavour, const FgcParams& params) {
+    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
+    Session s = make_session(flavour, state);
+    s.receive_fgc_params(params, FgcCodec::kHevc);
     FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
-    int poc = 0;
+    FrameInfo info;
+    s.apply(in.view(), out.view(), &info);
     for (auto _ : state) {
-        s.apply(in.view(), out.view(), FgcPictureIds{poc++ & 255, 0});
+        info.ids.poc = (info.ids.poc + 1) & 255;
+        s.apply(in.view(), out.view(), &info);
         benchmark::DoNotOptimize(out.bytes());
     }
     state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// args: width, height, bit depth, threads, optimized (0/1). The vfgs flavour (VFGS-exact)
-// through its frame synthesis directly (the session's vfgs::Options::threads reaches the same
-// constructor argument), so that the stream set-up is not timed.
-// VFGS's scale is 8 bits at every bit depth, so the 8-bit parameter set serves both.
-void BM_Vfgs(benchmark::State& state) {
-    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    vfgs::TemplateBank bank;
-    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
-    const vfgs::SynthesisSetup setup = vfgs::prepare_setup(fgc_params(8), in.format().chroma, bd, vfgs::Options{}, bank);
-    vfgs::FrameSynthesis s(int(state.range(3)), state.range(4) ? vfgs::Kernels::kOptimized : vfgs::Kernels::kReference);
-    vfgs::LfsrCursor cursor{vfgs::kDefaultLfsrState, vfgs::kDefaultLfsrState};
-    for (auto _ : state) {
-        s.apply(in.view(), out.view(), setup, cursor);
-        benchmark::DoNotOptimize(out.bytes());
-    }
-    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+// args: width, height, bit depth, threads, optimized (0/1), flavour (0 rdd5, 1 vtm)
+void BM_Fgc(benchmark::State& state) {
+    run_fgc(state, state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5, fgc_params(int(state.range(2))));
 }
+
+// args: width, height, bit depth, threads, optimized (0/1). The vfgs flavour (VFGS-exact).
+// VFGS's scale is 8 bits at every bit depth, so the 8-bit parameter set serves both.
+void BM_Vfgs(benchmark::State& state) { run_fgc(state, FgcFlavour::kVfgs, fgc_params(8)); }
 
 // args: width, height, bit depth, threads, optimized (0/1)
 void BM_Av1(benchmark::State& state) {
     const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    av1::Av1PictureSynthesis s(int(state.range(3)), state.range(4) ? av1::Kernels::kOptimized : av1::Kernels::kReference);
+    Session s = make_session(FgcFlavour::kRdd5, state);
     Av1FilmGrainParams p = bench::av1_params();
     FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     for (auto _ : state) {
         p.grain_seed = (p.grain_seed + 7391) & 0xFFFF;  // encoders change the seed every frame
-        s.apply(p, in.view(), out.view(), 1);
+        s.receive_av1_params(p, 0, 1);
+        s.apply(in.view(), out.view());
         benchmark::DoNotOptimize(out.bytes());
     }
     state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/kernels.hpp"
 #include "fgc/vfgs/vfgs_lfsr_jump.hpp"
 #include "fgc/vfgs/vfgs_picture_synthesis.hpp"
 #include "fgc/vfgs/vfgs_row_kernels.hpp"
@@ -19,11 +20,10 @@ class ThreadPool;
 
 namespace filmgrain::vfgs {
 
-enum class Kernels {
-    kReference,  // the scalar row kernels
-    kOptimized,  // the Highway row kernels where they apply (no pattern interpolation,
-                 // at most kMaxVectorRuns runs in a component's tables), scalar elsewhere
-};
+// Kernels (core/kernels.hpp): kReference the scalar row kernels; kOptimized the Highway row
+// kernels where they apply (no pattern interpolation, at most kMaxVectorRuns runs in a
+// component's tables), scalar elsewhere.
+using filmgrain::Kernels;
 
 class FrameSynthesis {
 public:
