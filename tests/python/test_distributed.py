@@ -17,7 +17,7 @@ import pytest
 
 import filmgrain
 from filmgrain import distributed
-from conftest import CONFORMANCE, ROOT, SEI_STREAM_TOOL, run_tool
+from conftest import CONFORMANCE, ROOT, SEI_STREAM_TOOL, md5_of, run_tool
 
 
 @pytest.fixture(scope="module")
@@ -140,6 +140,53 @@ def test_apply_hevc_stream_equals_decode(client, tmp_path, hevc_stream, per_task
     distributed.apply_job([str(hevc_stream), "-o", str(tmp_path / "dist.y4m"), "--threads", "1"], client,
                           frames_per_task=per_task)
     run_tool("decode", str(hevc_stream), "-o", str(tmp_path / "cli.y4m"), "--threads", "1", "-q")
+    assert (tmp_path / "dist.y4m").read_bytes() == (tmp_path / "cli.y4m").read_bytes()
+
+
+@pytest.fixture(scope="module")
+def hevc_sparse_streams(tmp_path_factory, hevc_stream):
+    # the same pictures with a persistent FGC SEI (film_grain_characteristics_persistence_flag
+    # 1: it holds until the next one) in every EVERY-th access unit only (decode order), so
+    # that the pictures between, and the ranges that start among them, take their grain from
+    # an SEI of an earlier picture. EVERY 5: the IDR (access unit 30) brings its own SEI, a
+    # restart point; EVERY 7: it does not, and the SEI of access unit 28 persists into it
+    d = tmp_path_factory.mktemp("hevc_sparse")
+    fgc = json.loads((CONFORMANCE / "ffmpeg71-350x198-420p8" / "fgc.json").read_text())
+    assert fgc["film_grain_characteristics_persistence_flag"] == 0
+    fgc["film_grain_characteristics_persistence_flag"] = 1
+    (d / "fgc_persistent.json").write_text(json.dumps(fgc))
+    streams = {}
+    for every in (5, 7):
+        streams[every] = d / f"grain_every{every}.hevc"
+        _run([SEI_STREAM_TOOL, str(hevc_stream.parent / "plain.hevc"), str(streams[every]),
+              str(d / "fgc_persistent.json"), "hevc", str(every)])
+    return streams
+
+
+def _frame_digests(path):
+    reader, out = filmgrain.VideoReader(str(path)), []
+    while (planes := reader.read()) is not None:
+        out.append(md5_of(planes))
+    return out
+
+
+@pytest.mark.parametrize("every, restarts, per_task", [(5, [30], 4), (5, [30], 11), (5, [30], 0),
+                                                      (7, [], 9), (7, [], 0)])
+def test_apply_hevc_sparse_persistent_sei_equals_decode(client, tmp_path, hevc_sparse_streams, every, restarts,
+                                                        per_task):
+    stream = hevc_sparse_streams[every]
+    assert filmgrain._filmgrain.stream_picture_count(str(stream)) == 60
+    assert filmgrain._filmgrain.stream_restart_points(str(stream)) == restarts
+    run_tool("decode", str(stream), "-o", str(tmp_path / "cli.y4m"), "--threads", "1", "-q")
+    # persistence is exercised: pictures without an SEI of their own have grain (12 or 9 SEIs
+    # for 60 pictures; with persistence_flag 0 only those 12 or 9 would), so most range starts
+    # fall where the grain comes from an earlier picture. (EVERY 7: decoding from the IDR
+    # instead changes output pictures 30-33 and 36, which take the SEI of access unit 28.)
+    run_tool("decode", str(stream), "-o", str(tmp_path / "clean.y4m"), "--threads", "1", "--no-grain", "-q")
+    grainy = [a != b for a, b in zip(_frame_digests(tmp_path / "cli.y4m"), _frame_digests(tmp_path / "clean.y4m"))]
+    assert len(grainy) == 60 and sum(grainy) == 60
+    distributed.apply_job([str(stream), "-o", str(tmp_path / "dist.y4m"), "--threads", "1"], client,
+                          frames_per_task=per_task)
     assert (tmp_path / "dist.y4m").read_bytes() == (tmp_path / "cli.y4m").read_bytes()
 
 
