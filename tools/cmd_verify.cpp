@@ -71,8 +71,9 @@ struct ReferencePicture {
     }
 };
 
-// Fills facts from what the session applied (ApplyResult::applied).
-void facts_from_applied(const ApplyResult& r, FgcFlavour flavour, verify::PictureFacts& f) {
+// Fills facts from what the session applied (ApplyResult::applied); `coded` is --coded-size
+// (0 x 0 without it), which the session sizes vtm's blocks by and so must the hypotheses.
+void facts_from_applied(const ApplyResult& r, FgcFlavour flavour, PictureSize coded, verify::PictureFacts& f) {
     if (!r.applied) return;
     const AppliedGrain& a = *r.applied;
     if (a.model == AppliedGrain::Model::kAv1) {
@@ -86,7 +87,13 @@ void facts_from_applied(const ApplyResult& r, FgcFlavour flavour, verify::Pictur
         f.fgc.ids = a.fgc_ids;
         f.fgc.flavour = flavour;
         f.fgc.persisted = !a.fgc_own_sei;
+        f.fgc.coded_width = coded.width;
+        f.fgc.coded_height = coded.height;
     }
+}
+
+PictureSize coded_size_of(const VerifyOptions& o) {
+    return o.coded_size.empty() ? PictureSize{} : parse_picture_size(o.coded_size, "--coded-size");
 }
 
 SessionOptions verify_session_options(const VerifyOptions& o, FgcFlavour flavour) {
@@ -125,7 +132,7 @@ public:
         const FrameInfo fi = feed_.feed(session_, k_++, reader_.info().fps_num, reader_.info().fps_den);
         pic.expected = FrameBuffer::uninitialized(pic.clean.width(), pic.clean.height(), pic.clean.format());
         const ApplyResult r = session_.apply(pic.clean.view(), pic.expected.view(), &fi);
-        facts_from_applied(r, flavour_, pic.facts);
+        facts_from_applied(r, flavour_, coded_size_of(o_), pic.facts);
         return true;
     }
     std::string name() const override { return o_.clean; }
@@ -189,7 +196,7 @@ public:
             return true;
         }
         const ApplyResult r = session_.apply(pic.clean.view(), pic.expected.view(), &*fi);
-        facts_from_applied(r, flavour_, pic.facts);
+        facts_from_applied(r, flavour_, coded_size_of(o_), pic.facts);
         if (pic.facts.model == verify::PictureFacts::Model::kAv1) {
             if (unit) {
                 pic.facts.av1_show_existing_frame = unit->av1_show_existing_frame;

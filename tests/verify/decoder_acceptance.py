@@ -135,9 +135,19 @@ h264 = os.path.join(WORK, "fgc_every3.264")
 run([SEI_TOOL, "plain.264", h264, "h264_fgc.json", "h264", "3"], check=0)
 ids = run([TOOL, "verify", "--list-mistakes"], check=0).stdout.split()
 expect(len(ids) == 30, f"30 mistakes known (got {len(ids)})")
+# H.265 coded at 1920x1088 showing 1920x1080: HM/VTM size the grain blocks by the coded
+# picture (deriveFGSBlkSize: over 1920x1080 samples, 16x16); a decoder sizing them by the
+# visible 1920x1080 takes 8x8 (fgc.block_size_8)
+coded1088 = os.path.join(CONF, "ffmpeg71-1920x1080-420p8-coded1088")
+case1088 = json.load(open(os.path.join(coded1088, "case.json")))
+expect((case1088["width"], case1088["height"], case1088["coded_width"], case1088["coded_height"]) == (1920, 1080, 1920, 1088),
+       f"{coded1088}: shown 1920x1080, coded 1920x1088 (case.json)")
+vtm_1088 = (os.path.join(coded1088, "stream.hevc"),
+            ["--flavour", "vtm", "--coded-size", f"{case1088['coded_width']}x{case1088['coded_height']}"])
 # (stream, extra arguments: the reference flavour the decoder is checked against)
 candidates = {"av1": [(s, []) for s in av1_8bit + [os.path.join(CONF, "av1_tv01_352x288_420p10", "stream.ivf"), altref]],
-              "fgc": [(s, []) for s in fgc_streams + [h264]] + [(s, ["--flavour", "vtm"]) for s in fgc_streams if "1280x720" in s],
+              "fgc": [(s, []) for s in fgc_streams + [h264]] + [(s, ["--flavour", "vtm"]) for s in fgc_streams if "1280x720" in s]
+                     + [vtm_1088],
               "any": [(s, []) for s in av1_8bit[:1] + fgc_streams[:1] + afgs1_streams]}
 exercised, not_exercised = [], []
 for mistake in ids:
@@ -173,7 +183,7 @@ print("no candidate stream exercises:", ", ".join(not_exercised) or "none")
 # stream-state mistakes the candidate streams cannot carry are tested on synthetic pictures
 # (tests/verify/mistake_hypotheses_test.cpp); every picture-level mistake must be exercised here
 allowed_missing = {"av1.update_grain_wrong_slot", "fgc.semantic_persistence",
-                   "av1.show_existing_frame_reuses_previous", "fgc.block_size_8"}
+                   "av1.show_existing_frame_reuses_previous"}
 for m in not_exercised:
     expect(m in allowed_missing, f"{m}: no real stream exercised it")
 
