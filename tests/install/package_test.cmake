@@ -90,3 +90,77 @@ if(EXISTS ${BUILD_DIR}/filmgrain-oiio.so)
     message(FATAL_ERROR "the installed tool did not write a PNG (${signature})")
   endif()
 endif()
+
+# The Python module, when the build has it: Debian's python3 imports the installed package
+# (PYTHONPATH = the directory the install put it in, not the build tree's) and applies grain
+# to a tiny frame. Where the install puts it depends on the configured prefix (CMakeLists.txt:
+# lib/python3/dist-packages for /usr, lib/python3.X/dist-packages for /usr/local,
+# lib/python3.X/site-packages otherwise); the package is looked for under the prefix.
+file(GLOB built_python_module ${BUILD_DIR}/python/filmgrain/_filmgrain*.so)
+if(built_python_module)
+  file(GLOB_RECURSE installed_init ${prefix}/lib/__init__.py)
+  list(FILTER installed_init INCLUDE REGEX "/filmgrain/__init__.py$")
+  list(LENGTH installed_init n)
+  if(NOT n EQUAL 1)
+    message(FATAL_ERROR "expected one installed filmgrain/__init__.py under ${prefix}/lib, found: ${installed_init}")
+  endif()
+  get_filename_component(python_package ${installed_init} DIRECTORY)
+  get_filename_component(python_dir ${python_package} DIRECTORY)
+  file(GLOB installed_python_module ${python_package}/_filmgrain*.so)
+  if(NOT installed_python_module)
+    message(FATAL_ERROR "not installed: ${python_package}/_filmgrain*.so")
+  endif()
+  load_cache(${BUILD_DIR} READ_WITH_PREFIX cache_ Python_EXECUTABLE CMAKE_INSTALL_PREFIX)
+  set(python ${cache_Python_EXECUTABLE})
+  if(NOT python)
+    set(python /usr/bin/python3)
+  endif()
+  # Installed into the configured prefix /usr or /usr/local, the same directory is on that
+  # python3's own sys.path (no PYTHONPATH): Debian's searches /usr/lib/python3/dist-packages
+  # and /usr/local/lib/python3.X/dist-packages, not /usr/local/lib/python3/dist-packages.
+  file(RELATIVE_PATH python_dir_in_prefix ${prefix} ${python_dir})
+  if(cache_CMAKE_INSTALL_PREFIX STREQUAL "/usr" OR cache_CMAKE_INSTALL_PREFIX STREQUAL "/usr/local")
+    run(${python} -E -c "print(chr(10).join(__import__('sys').path))")
+    string(REPLACE "\n" ";" python_sys_path "${last_output}")
+    list(FIND python_sys_path "${cache_CMAKE_INSTALL_PREFIX}/${python_dir_in_prefix}" at)
+    if(at EQUAL -1)
+      message(FATAL_ERROR "${cache_CMAKE_INSTALL_PREFIX}/${python_dir_in_prefix} (the module's place for the "
+              "configured prefix) is not on ${python}'s sys.path:\n${last_output}")
+    endif()
+  endif()
+  file(WRITE ${WORK_DIR}/installed_module.py [=[
+import os, sys
+import numpy as np
+import filmgrain
+where = os.path.realpath(filmgrain.__file__)
+assert where.startswith(os.path.realpath(sys.argv[1]) + os.sep), "imported from " + where
+print("filmgrain", filmgrain.__version__, "from", os.path.dirname(where))
+s = filmgrain.Session(flavour="rdd5", threads=1)
+s.push_fgc_sei(open(sys.argv[2], "rb").read(), "hevc", poc=0)
+y = np.full((32, 48), 128, np.uint8)
+c = np.full((16, 24), 128, np.uint8)
+out = s.apply([y, c, c], poc=0)
+assert s.last_result["grain_applied"], s.last_result["message"]
+assert out[0].shape == y.shape and out[0].dtype == np.uint8 and not np.array_equal(out[0], y)
+print("grain applied to a 48x32 frame")
+]=])
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${python_dir} ${python} -s ${WORK_DIR}/installed_module.py ${python_dir}
+      ${SOURCE_DIR}/conformance/rdd5_352x288_420p8/frame0.fgc.bin)
+  message(STATUS "installed Python module:\n${last_output}")
+endif()
+
+# The GStreamer plugin, when the build has it: gst-inspect-1.0 finds the installed copy
+# through GST_PLUGIN_PATH (a prefix other than /usr is not in GStreamer's own search path).
+if(EXISTS ${BUILD_DIR}/gst-plugins/libgstfilmgrain.so)
+  set(gst_dir ${libdir}/gstreamer-1.0)
+  if(NOT EXISTS ${gst_dir}/libgstfilmgrain.so)
+    message(FATAL_ERROR "not installed: ${gst_dir}/libgstfilmgrain.so")
+  endif()
+  find_program(GST_INSPECT gst-inspect-1.0 REQUIRED)
+  run(${CMAKE_COMMAND} -E env GST_PLUGIN_PATH=${gst_dir} GST_REGISTRY_1_0=${WORK_DIR}/gst-registry.bin
+      ${GST_INSPECT} filmgrain)
+  if(NOT last_output MATCHES "Filename +${gst_dir}/libgstfilmgrain.so" OR NOT last_output MATCHES "filmgrainparse")
+    message(FATAL_ERROR "gst-inspect-1.0 did not load the installed plugin ${gst_dir}/libgstfilmgrain.so:\n${last_output}")
+  endif()
+  message(STATUS "gst-inspect-1.0 filmgrain: the installed plugin, ${gst_dir}/libgstfilmgrain.so")
+endif()
