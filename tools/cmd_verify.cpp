@@ -1,8 +1,10 @@
 // `filmgrain verify`: checks a decoder's grainy output against the session's re-synthesis and,
 // where they differ, names the implementation mistake that reproduces the decoder's pictures
 // (src/verify). The reference pictures come from a stream (decoded by libav with grain
-// exported and the metadata read as `decode` reads it) or from clean pictures plus the
-// metadata files `apply` reads; the decoder's output is Y4M, raw YUV or a per-frame .md5 list.
+// exported and the metadata read as `decode` reads it, except FGC SEI: taken from the stream
+// scan with its persistence, which --persistence decides, where `decode` takes FFmpeg's
+// reading) or from clean pictures plus the metadata files `apply` reads; the decoder's output
+// is Y4M, raw YUV or a per-frame .md5 list.
 //
 // Alignment: a decoder may drop pictures. A decoded picture that does not match the next
 // reference picture is looked for among the next kLookahead ones: exactly, else by a clearly
@@ -162,6 +164,9 @@ private:
 // A coded stream: libav's pictures with grain exported, the grain as `decode` applies it,
 // and from the elementary stream's scan what libav does not export (POC and idr_pic_id apart,
 // whether a picture brought its own SEI, AV1 show_existing_frame and reference slots, AFGS1).
+// FGC SEI come from the scan, each with its own picture: FFmpeg exports an SEI only for the
+// pictures its persistence reading gives it to (FFmpeg 5.1: an H.264 repetition_period 0 ends
+// with its picture) and without the flag, where the reference (HM) reuses the last SEI.
 class StreamSource final : public ReferenceSource {
 public:
     StreamSource(const VerifyOptions& o, FgcFlavour flavour)
@@ -174,6 +179,12 @@ public:
         stream_ = read_stream_metadata(o.stream, decoder_.description().codec_name, [this](const std::string& w) {
             if (!o_.quiet) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
         });
+        // FGC SEI from the scan when it found any: FFmpeg exports a picture's SEI with its
+        // persistence already applied (FFmpeg's way) and without the flag itself.
+        if (stream_.scan.codec != bitstream::StreamCodec::kAv1)
+            for (const bitstream::AccessUnit* u : stream_.units)
+                if (u && std::any_of(u->fgc.begin(), u->fgc.end(), [](const auto& f) { return f.params.has_value(); }))
+                    fgc_from_scan_ = true;
     }
     bool next(ReferencePicture& pic) override {
         libav::DecodedFrame frame;
@@ -183,12 +194,15 @@ public:
         const bitstream::AccessUnit* unit =
             std::size_t(frame.index) < stream_.units.size() ? stream_.units[std::size_t(frame.index)] : nullptr;
         take_afgs1_grain(frame, stream_.afgs1, frame.picture.width(), frame.picture.height());
-        std::optional<FrameInfo> fi = hand_exported_grain(session_, frame);
+        std::optional<FrameInfo> fi =
+            fgc_from_scan_ && unit && !frame.av1 ? scanned_fgc_grain(*unit) : hand_exported_grain(session_, frame);
         // the scan's POC and idr_pic_id where they give FFmpeg's seed (RDD 5 pic_offset): the
         // IDR-term hypothesis needs them apart, and vtm seeds from the POC alone
         if (fi && frame.fgc && unit && unit->poc &&
             uint32_t(*unit->poc) + (uint32_t(unit->idr_pic_id.value_or(0)) << 5) == uint32_t(frame.seed))
             fi->ids = FgcPictureIds{*unit->poc, unit->idr_pic_id.value_or(0)};
+        else if (fi && frame.fgc)
+            fi->ids = FgcPictureIds{int(frame.seed), 0};  // the scan does not give FFmpeg's seed: FFmpeg's
         pic.clean = std::move(frame.picture);
         pic.expected = FrameBuffer::uninitialized(pic.clean.width(), pic.clean.height(), pic.clean.format());
         if (!fi) {
@@ -214,11 +228,30 @@ public:
     int fps_den() const override { return decoder_.description().fps_den; }
 
 private:
+    // The picture's own FGC SEI from the scan (the last one that parsed), with its
+    // persistence_flag / repetition_period, so that the session's persistence (--persistence:
+    // the reference reuses the last SEI; semantic ends it with its picture) decides over
+    // pictures without one. nullopt before the stream's first SEI.
+    std::optional<FrameInfo> scanned_fgc_grain(const bitstream::AccessUnit& unit) {
+        const bitstream::FoundFgc* own = nullptr;
+        for (const bitstream::FoundFgc& f : unit.fgc)
+            if (f.params) own = &f;
+        if (own) {
+            session_.receive_fgc_params(*own->params, bitstream::fgc_codec(stream_.scan.codec));
+            fgc_seen_ = true;
+        }
+        if (!fgc_seen_) return std::nullopt;
+        FrameInfo fi;
+        fi.ids = FgcPictureIds{unit.poc.value_or(0), unit.idr_pic_id.value_or(0)};
+        return fi;
+    }
+
     const VerifyOptions& o_;
     FgcFlavour flavour_;
     libav::VideoDecoder decoder_;
     Session session_;
     StreamMetadata stream_;  // its units point into its own scan (moved with it)
+    bool fgc_from_scan_ = false, fgc_seen_ = false;
     std::optional<Av1FilmGrainParams> previous_av1_;
     int index_ = 0;
 };
