@@ -1,10 +1,10 @@
 // `filmgrain verify`: checks a decoder's grainy output against the session's re-synthesis and,
 // where they differ, names the implementation mistake that reproduces the decoder's pictures
 // (src/verify). The reference pictures come from a stream (decoded by libav with grain
-// exported and the metadata read as `decode` reads it, except FGC SEI: taken from the stream
-// scan with its persistence, which --persistence decides, where `decode` takes FFmpeg's
-// reading) or from clean pictures plus the metadata files `apply` reads; the decoder's output
-// is Y4M, raw YUV or a per-frame .md5 list.
+// exported and the metadata read as `decode` reads it; with an explicit --persistence the FGC
+// SEI come from the stream scan with their persistence, which that option then decides) or
+// from clean pictures plus the metadata files `apply` reads; the decoder's output is Y4M, raw
+// YUV or a per-frame .md5 list.
 //
 // Alignment: a decoder may drop pictures. A decoded picture that does not match the next
 // reference picture is looked for among the next kLookahead ones: exactly, else by a clearly
@@ -44,7 +44,8 @@ struct VerifyOptions {
     std::string clean, params, sei_codec = "hevc";
     std::vector<std::string> sei, afgs1;
     RawVideoOptions raw;  // raw decoded / clean input; default: the reference's size and format
-    std::string flavour = "rdd5", persistence = "reference", coded_size;
+    // persistence "": as `decode` on a stream (FFmpeg's reading), the reference's with --clean
+    std::string flavour = "rdd5", persistence, coded_size;
     std::string json, report;
     int threads = 0;
     int diagnose = 8;       // mismatching pictures the hypotheses are tried on
@@ -164,9 +165,10 @@ private:
 // A coded stream: libav's pictures with grain exported, the grain as `decode` applies it,
 // and from the elementary stream's scan what libav does not export (POC and idr_pic_id apart,
 // whether a picture brought its own SEI, AV1 show_existing_frame and reference slots, AFGS1).
-// FGC SEI come from the scan, each with its own picture: FFmpeg exports an SEI only for the
-// pictures its persistence reading gives it to (FFmpeg 5.1: an H.264 repetition_period 0 ends
-// with its picture) and without the flag, where the reference (HM) reuses the last SEI.
+// With an explicit --persistence, FGC SEI come from the scan, each with its own picture:
+// FFmpeg exports an SEI only for the pictures its persistence reading gives it to (FFmpeg 5.1:
+// an H.264 repetition_period 0 ends with its picture) and without the flag, where the
+// reference (HM) reuses the last SEI. Without it the reference is what `decode` writes.
 class StreamSource final : public ReferenceSource {
 public:
     StreamSource(const VerifyOptions& o, FgcFlavour flavour)
@@ -179,9 +181,10 @@ public:
         stream_ = read_stream_metadata(o.stream, decoder_.description().codec_name, [this](const std::string& w) {
             if (!o_.quiet) std::fprintf(stderr, "filmgrain: warning: %s\n", w.c_str());
         });
-        // FGC SEI from the scan when it found any: FFmpeg exports a picture's SEI with its
-        // persistence already applied (FFmpeg's way) and without the flag itself.
-        if (stream_.scan.codec != bitstream::StreamCodec::kAv1)
+        // FGC SEI from the scan when it found any and a persistence was asked for: FFmpeg
+        // exports a picture's SEI with its persistence already applied (FFmpeg's way) and
+        // without the flag itself.
+        if (!o.persistence.empty() && stream_.scan.codec != bitstream::StreamCodec::kAv1)
             for (const bitstream::AccessUnit* u : stream_.units)
                 if (u && std::any_of(u->fgc.begin(), u->fgc.end(), [](const auto& f) { return f.params.has_value(); }))
                     fgc_from_scan_ = true;
@@ -381,7 +384,7 @@ int run_verify(const VerifyOptions& o) {
         return 0;
     }
     const FgcFlavour flavour = parse_flavour(o.flavour);
-    if (o.persistence != "reference" && o.persistence != "semantic")
+    if (!o.persistence.empty() && o.persistence != "reference" && o.persistence != "semantic")
         throw Error(ErrorCode::kInvalidArgument, "--persistence '" + o.persistence + "' is not known (allowed reference, semantic)");
     if (o.stream.empty() == o.clean.empty())
         throw Error(ErrorCode::kInvalidArgument, "give either a STREAM or --clean CLEAN with its metadata");
@@ -568,8 +571,10 @@ void add_verify_options(CLI::App* sub, VerifyOptions& o) {
     o.raw.add_to(sub);
     sub->add_option("--flavour", o.flavour, "the FGC reference the decoder should match: rdd5, vtm, ffmpeg or tr")
         ->capture_default_str();
-    sub->add_option("--persistence", o.persistence, "FGC persistence of the reference: reference or semantic")
-        ->capture_default_str();
+    sub->add_option("--persistence", o.persistence,
+                    "FGC persistence of the reference: reference (HM reuses the last SEI) or semantic (an SEI ends "
+                    "with its picture unless it persists). Default: a STREAM's as `decode` reads it (the grain "
+                    "libavcodec exports); with --clean, reference");
     sub->add_option("--coded-size", o.coded_size, "vtm: the SPS coded luma size WxH (HM's block size rule)");
     sub->add_option("--json", o.json, "write the full result as JSON to this file (- for stdout; the text report then goes to stderr)");
     sub->add_option("--report", o.report,

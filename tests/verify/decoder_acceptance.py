@@ -10,8 +10,9 @@
    identical pictures on that stream (checked byte for byte, and printed). Every mistake
    must be exercised; the stream-state ones on streams made for them (aomenc alt-ref with
    show_existing_frame, aomenc grain table with update_grain = 0, H.264 with an SEI every
-   third picture). `filmgrain decode`, which follows FFmpeg's persistence, is diagnosed as
-   fgc.semantic_persistence there.
+   third picture, checked with --persistence reference). `filmgrain decode`, which follows
+   FFmpeg's persistence, is bit-exact there by default (verify reads a stream as decode does)
+   and diagnosed as fgc.semantic_persistence against --persistence reference.
 3. A decoder that dropped pictures: the missing ones are named and the rest stays aligned.
 4. dav1d --filmgrain 0 (grain not applied) is diagnosed as such.
 5. A real decoder whose grain no known mistake describes: Debian 12's FFmpeg 5.1 applies
@@ -218,7 +219,8 @@ vtm_1088 = (os.path.join(coded1088, "stream.hevc"),
 # (stream, extra arguments: the reference flavour the decoder is checked against)
 candidates = {"av1": [(s, []) for s in av1_8bit + [os.path.join(CONF, "av1_tv01_352x288_420p10", "stream.ivf"), altref,
                                           update0]],
-              "fgc": [(s, []) for s in fgc_streams + [h264]] + [(s, ["--flavour", "vtm"]) for s in fgc_streams if "1280x720" in s]
+              "fgc": [(s, []) for s in fgc_streams] + [(h264, ["--persistence", "reference"])]
+                     + [(s, ["--flavour", "vtm"]) for s in fgc_streams if "1280x720" in s]
                      + [vtm_1088],
               "any": [(s, []) for s in av1_8bit[:1] + fgc_streams[:1] + afgs1_streams]}
 exercised, not_exercised = [], []
@@ -266,13 +268,17 @@ print("no candidate stream exercises:", ", ".join(not_exercised) or "none")
 for m in not_exercised:
     expect(False, f"{m}: no real stream exercised it")
 # FFmpeg's own persistence (which `filmgrain decode` follows, taking the grain libav exports):
-# an H.264 SEI with repetition_period 0 ends with its picture. A real decoder making
-# fgc.semantic_persistence, against the reference (HM reuses the last SEI).
+# an H.264 SEI with repetition_period 0 ends with its picture. By default verify reads the
+# stream as decode does, so decode's output is bit-exact; checked against the reference's
+# persistence (HM reuses the last SEI) it is a real decoder making fgc.semantic_persistence.
 run([TOOL, "decode", h264, "-o", "decoded.y4m", "-q"], check=0)
 rc, r = verify_json(h264, "decoded.y4m")
+expect(rc == 0, f"filmgrain decode of {h264} bit-exact by default, the stream read as decode reads it (rc {rc})")
+rc, r = verify_json(h264, "decoded.y4m", "--persistence", "reference")
 expect(rc == 1 and r["diagnosis"] and r["diagnosis"][0]["id"] == "fgc.semantic_persistence" and
        r["diagnosis"][0]["frames_exact"] == r["summary"]["mismatching"] > 0,
-       f"filmgrain decode of {h264} (FFmpeg's persistence) diagnosed as fgc.semantic_persistence (rc {rc})")
+       f"filmgrain decode of {h264} (FFmpeg's persistence) against --persistence reference: "
+       f"fgc.semantic_persistence (rc {rc})")
 rc, r = verify_json(h264, "decoded.y4m", "--persistence", "semantic")
 expect(rc == 0, f"filmgrain decode of {h264} bit-exact with --persistence semantic (rc {rc})")
 
