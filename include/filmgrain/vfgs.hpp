@@ -39,6 +39,9 @@ struct Options {
     // stripe starts from its own LFSR state, jumped ahead at set-up from the reference's one
     // sequence through the picture, so the output is the same for every count.
     int threads = 1;
+    // true: the scalar reference row kernels instead of the vector ones (verification and
+    // benchmarks, as SessionOptions::reference_kernels); the output is identical.
+    bool reference_kernels = false;
 };
 
 class Synthesizer {

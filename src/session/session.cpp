@@ -123,6 +123,7 @@ struct Session::Impl {
             vo.pattern_interpolation = options.pattern_interpolation;
             vo.block_size = options.block_size;
             vo.threads = options.threads;
+            vo.reference_kernels = options.reference_kernels;
             vfgs = std::make_unique<vfgs::Synthesizer>(vo);
         } else {
             FgcOptions fo;

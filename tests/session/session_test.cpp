@@ -186,6 +186,21 @@ TEST(Session, VfgsThreadsGiveTheSameOutput) {
     }
 }
 
+// reference_kernels reaches every model (benchmarks and verification compare the two paths
+// through the session): the same pictures for rdd5, vtm and vfgs at 8 and 10 bits.
+TEST(Session, ReferenceKernelsGiveTheSameOutputForEveryFlavour) {
+    for (FgcFlavour f : {FgcFlavour::kRdd5, FgcFlavour::kVtm, FgcFlavour::kVfgs})
+        for (int bd : {8, 10}) {
+            const FrameBuffer in = noise_picture(176, 200, PixelFormat{ChromaFormat::k420, bd}, 5);
+            SessionOptions so;
+            so.flavour = f;
+            so.threads = 2;
+            const std::vector<uint8_t> optimized = through_session(so, in);
+            so.reference_kernels = true;
+            EXPECT_EQ(through_session(so, in), optimized) << fgc_flavour_name(f) << " " << bd << "-bit";
+        }
+}
+
 TEST(Session, ClipOverrideAndPictureMatrixReachAv1Synthesis) {
     const FrameBuffer in = noise_picture(96, 64, PixelFormat{ChromaFormat::k420, 10}, 9);
     for (int clip : {0, 1})

@@ -28,7 +28,7 @@ struct Synthesizer::Impl {
     SynthesisSetup setup;
     FrameSynthesis frames;
 
-    explicit Impl(int threads) : frames(threads, Kernels::kOptimized) {}
+    explicit Impl(const Options& o) : frames(o.threads, o.reference_kernels ? Kernels::kReference : Kernels::kOptimized) {}
 
     void prepare(ChromaFormat format, int bit_depth) {
         setup = prepare_setup(*params, format, bit_depth, options, bank);
@@ -61,7 +61,7 @@ const Options& checked(const Options& options) {
 }
 }  // namespace
 
-Synthesizer::Synthesizer(const Options& options) : impl_(std::make_unique<Impl>(checked(options).threads)) {
+Synthesizer::Synthesizer(const Options& options) : impl_(std::make_unique<Impl>(checked(options))) {
     impl_->options = options;
     const uint32_t r0 = options.seed ? lfsr_state_from_seed(*options.seed) : kDefaultLfsrState;
     impl_->cursor = LfsrCursor{r0, r0};
