@@ -179,9 +179,9 @@ int run_decode(const DecodeOptions& o) {
     // second read of other files
     const bool raw_stream = d.format_name == "h264" || d.format_name == "hevc" || d.format_name == "ivf" ||
                             d.format_name == "obu" || d.format_name == "av1";
-    const StreamMetadata stream = o.no_grain && (o.first_frame == 0 || !raw_stream)
-                                      ? StreamMetadata{}
-                                      : read_stream_metadata(o.input, d.codec_name, warn);
+    // The scan is for what libav does not export (AFGS1) and for a range's restart point.
+    const bool scan = raw_stream && (o.first_frame > 0 || (!o.no_grain && may_carry_afgs1(o.input)));
+    const StreamMetadata stream = scan ? read_stream_metadata(o.input, d.codec_name, warn) : StreamMetadata{};
     // A range decodes from the random access point before it, not from the stream's start.
     int64_t first_position = 0;
     if (o.first_frame > 0 && raw_stream)

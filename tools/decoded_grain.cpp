@@ -4,6 +4,11 @@
 #include "bitstream/av1_grain_extraction.hpp"
 #include "filmgrain/error.hpp"
 
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <iterator>
+
 namespace filmgrain::cli {
 
 StreamMetadata read_stream_metadata(const std::string& path, const std::string& codec_name,
@@ -20,6 +25,25 @@ StreamMetadata read_stream_metadata(const std::string& path, const std::string& 
     m.afgs1 = bitstream::afgs1_payloads_in_output_order(m.scan, warnings);
     for (const std::string& w : warnings) warn(w);
     return m;
+}
+
+bool may_carry_afgs1(const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return true;
+    static constexpr uint8_t kHeader[4] = {0xB5, 0x58, 0x90, 0x01};
+    std::vector<uint8_t> buf(std::size_t(1) << 20);
+    std::size_t kept = 0;  // the last bytes of the previous chunk, so a header across chunks is found
+    bool found = false;
+    for (std::size_t n; !found && (n = std::fread(buf.data() + kept, 1, buf.size() - kept, f)) > 0;) {
+        const std::size_t end = kept + n;
+        found = std::search(buf.begin(), buf.begin() + long(end), std::begin(kHeader), std::end(kHeader)) !=
+                buf.begin() + long(end);
+        kept = std::min<std::size_t>(end, sizeof kHeader - 1);
+        std::memmove(buf.data(), buf.data() + end - kept, kept);
+    }
+    const bool failed = std::ferror(f) != 0;
+    std::fclose(f);
+    return found || failed;
 }
 
 void take_afgs1_grain(libav::DecodedFrame& frame, const std::vector<std::optional<Afgs1Payload>>& afgs1, int width,
