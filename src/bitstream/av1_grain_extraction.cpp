@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "filmgrain/error.hpp"
+#include "bitstream/afgs1_in_stream.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "metadata/afgs1.hpp"
 
@@ -134,18 +135,16 @@ std::vector<Av1FrameParams> av1_params_from_scan(const StreamScan& scan, std::ve
 std::vector<std::optional<Afgs1Payload>> afgs1_payloads_in_output_order(const StreamScan& scan,
                                                                          std::vector<std::string>& warnings) {
     std::vector<std::optional<Afgs1Payload>> out;
-    Afgs1Reader reader;
     std::map<const AccessUnit*, Afgs1Payload> by_unit;
     bool any = false;
-    for (const AccessUnit& au : scan.units)
-        for (const FoundT35& t : au.t35) {
-            if (!is_afgs1_t35(t.t35)) continue;
-            any = true;
-            try {
-                by_unit[&au] = reader.receive(t35_bytes(t.t35), true);
-            } catch (const Error& e) {
-                warnings.push_back("access unit " + std::to_string(au.index) + ": AFGS1 payload skipped: " + e.what());
-            }
+    const auto reads = read_afgs1_in_decode_order(scan);
+    for (std::size_t k = 0; k < scan.units.size(); k++)
+        for (const Afgs1Read& read : reads[k]) {
+            any |= !std::holds_alternative<std::monostate>(read);
+            if (const auto* p = std::get_if<Afgs1Payload>(&read)) by_unit[&scan.units[k]] = *p;
+            if (const auto* why = std::get_if<std::string>(&read))
+                warnings.push_back("access unit " + std::to_string(scan.units[k].index) +
+                                   ": AFGS1 payload skipped: " + *why);
         }
     if (!any) return out;
     for (const AccessUnit* au : units_in_output_order(scan)) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <variant>
 
+#include "bitstream/afgs1_in_stream.hpp"
 #include "filmgrain/error.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_json.hpp"
@@ -21,31 +22,6 @@ std::string hex(const std::vector<uint8_t>& b, std::size_t max_bytes) {
     }
     if (b.size() > max_bytes) s += "...";
     return s;
-}
-
-// Each AFGS1 payload as a decoder reads it: in decode order, updating the 8 stored sets, so a
-// set with update_grain_flag = 0 shows the parameters it resolves to (AFGS1 7.2). Per unit, per
-// T.35 payload: the payload, the reason it is unreadable, or nothing for other T.35 data.
-using Afgs1Read = std::variant<std::monostate, Afgs1Payload, std::string>;
-
-std::vector<std::vector<Afgs1Read>> read_afgs1_payloads(const StreamScan& scan) {
-    Afgs1Reader reader;
-    std::vector<std::vector<Afgs1Read>> out;
-    for (const AccessUnit& u : scan.units) {
-        std::vector<Afgs1Read>& reads = out.emplace_back();
-        for (const FoundT35& t : u.t35) {
-            if (!is_afgs1_t35(t.t35)) {
-                reads.emplace_back();
-                continue;
-            }
-            try {
-                reads.emplace_back(reader.receive(t35_bytes(t.t35), true));
-            } catch (const Error& e) {
-                reads.emplace_back(std::string(e.what()));
-            }
-        }
-    }
-    return out;
 }
 
 std::string afgs1_target_text(const Afgs1SetTarget& t) {
@@ -131,7 +107,7 @@ std::string fgc_summary(const FgcParams& p) {
 
 json stream_scan_to_json(const StreamScan& scan) {
     json units = json::array();
-    const std::vector<std::vector<Afgs1Read>> afgs1 = read_afgs1_payloads(scan);
+    const std::vector<std::vector<Afgs1Read>> afgs1 = read_afgs1_in_decode_order(scan);
     for (std::size_t unit = 0; unit < scan.units.size(); unit++) {
         const AccessUnit& u = scan.units[unit];
         json j{{"index", u.index}, {"offset", u.offset}, {"nal_units", u.nal_units}, {"pictures", u.pictures}};
@@ -186,7 +162,7 @@ std::string stream_scan_to_text(const StreamScan& scan) {
                     " unit(s); POC: " + scan.poc_support + "\n";
     for (const std::string& w : scan.warnings) s += "warning: " + w + "\n";
     int fgc = 0, t35 = 0;
-    const std::vector<std::vector<Afgs1Read>> afgs1 = read_afgs1_payloads(scan);
+    const std::vector<std::vector<Afgs1Read>> afgs1 = read_afgs1_in_decode_order(scan);
     for (std::size_t unit = 0; unit < scan.units.size(); unit++) {
         const AccessUnit& u = scan.units[unit];
         s += (scan.codec == StreamCodec::kAv1 ? "TU " : "AU ") + std::to_string(u.index) + " @" + std::to_string(u.offset);

@@ -14,6 +14,7 @@
 #include <iterator>
 #include <vector>
 
+#include "bitstream/afgs1_in_stream.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "bitstream/stream_scan.hpp"
 #include "core/thread_pool.hpp"
@@ -743,21 +744,19 @@ fg_status fg_stream_scan_create(const uint8_t* data, size_t size, int codec, fg_
         // header in force at that unit (decode order).
         std::vector<int> matrix(found.units.size(), 2);
         int current_matrix = 2;
-        // AFGS1 stored sets are updated in decode order, each payload resolved as it comes.
-        filmgrain::Afgs1Reader afgs1_sets;
+        // AFGS1 payloads resolved in decode order, written with every set explicit.
+        const auto reads = bs::read_afgs1_in_decode_order(found);
         std::vector<std::vector<uint8_t>> afgs1(found.units.size());
         std::vector<std::vector<std::string>> afgs1_warnings(found.units.size());
         for (std::size_t k = 0; k < found.units.size(); k++) {
             if (found.units[k].av1_sequence_header)
                 current_matrix = found.units[k].av1_sequence_header->matrix_coefficients;
             matrix[k] = current_matrix;
-            for (const bs::FoundT35& t : found.units[k].t35) {
-                if (!bs::is_afgs1_t35(t.t35)) continue;
-                try {
-                    afgs1[k] = filmgrain::write_afgs1_resolved(afgs1_sets.receive(bs::t35_bytes(t.t35), true));
-                } catch (const filmgrain::Error& e) {
-                    afgs1_warnings[k].push_back(std::string("AFGS1 payload skipped: ") + e.what());
-                }
+            for (const bs::Afgs1Read& read : reads[k]) {
+                if (const auto* p = std::get_if<filmgrain::Afgs1Payload>(&read))
+                    afgs1[k] = filmgrain::write_afgs1_resolved(*p);
+                if (const auto* why = std::get_if<std::string>(&read))
+                    afgs1_warnings[k].push_back("AFGS1 payload skipped: " + *why);
             }
         }
         for (const bs::AccessUnit* au : bs::units_in_output_order(found)) {
