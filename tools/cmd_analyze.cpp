@@ -246,9 +246,12 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
                 s << r.chosen_order << " interval(s), worst band error " << pct(r.error) << " (by count: "
                   << list_percent(r.error_by_order) << "); " << r.cutoff_pairs << " cut-off pair(s), signalled cut-offs";
                 for (const auto& pr : r.cutoffs) s << " (" << pr.first << "," << pr.second << ")";
-                char corr[120];
-                std::snprintf(corr, sizeof corr, " (observed correlation at lags 1, 2: horizontal %.3f %.3f, vertical %.3f %.3f)",
-                              r.pooled.observed_x[1], r.pooled.observed_x[2], r.pooled.observed_y[1], r.pooled.observed_y[2]);
+                char corr[200];
+                std::snprintf(corr, sizeof corr,
+                              " (observed correlation at lags 1, 2: horizontal %.3f %.3f, vertical %.3f %.3f, diagonal %.3f %.3f;"
+                              " model mismatch %.3f)",
+                              r.pooled.observed_x[1], r.pooled.observed_x[2], r.pooled.observed_y[1], r.pooled.observed_y[2],
+                              r.pooled.observed_diagonal[0], r.pooled.observed_diagonal[1], r.pooled.mismatch);
                 s << corr;
                 s << "; log2_scale_factor " << fgc_params.log2_scale_factor;
             }

@@ -59,6 +59,10 @@ void LagSums::add(const LagSums& o) {
         x_pairs[k] += o.x_pairs[k];
         y_pairs[k] += o.y_pairs[k];
     }
+    for (int d = 0; d < 2; d++) {
+        diagonal[d] += o.diagonal[d];
+        diagonal_pairs[d] += o.diagonal_pairs[d];
+    }
     energy += o.energy;
     samples += o.samples;
 }
@@ -71,6 +75,10 @@ double LagSums::ry(int k) const {
     return y_pairs[k] > 0 && energy > 0 ? (y[k] / y_pairs[k]) / (energy / samples) : 0.0;
 }
 
+double LagSums::rd(int d) const {
+    return diagonal_pairs[d] > 0 && energy > 0 ? (diagonal[d] / diagonal_pairs[d]) / (energy / samples) : 0.0;
+}
+
 void accumulate_lags(const cv::Mat& r, LagSums& sums) {
     for (int yy = 0; yy < r.rows; yy++) {
         const float* row = r.ptr<float>(yy);
@@ -81,9 +89,20 @@ void accumulate_lags(const cv::Mat& r, LagSums& sums) {
                 if (xx + k < r.cols) sums.x[k] += v * row[xx + k], sums.x_pairs[k] += 1;
                 if (yy + k < r.rows) sums.y[k] += v * r.ptr<float>(yy + k)[xx], sums.y_pairs[k] += 1;
             }
+            if (yy + 1 < r.rows) {
+                const float* below = r.ptr<float>(yy + 1);
+                if (xx + 1 < r.cols) sums.diagonal[0] += v * below[xx + 1], sums.diagonal_pairs[0] += 1;
+                if (xx >= 1) sums.diagonal[1] += v * below[xx - 1], sums.diagonal_pairs[1] += 1;
+            }
         }
     }
     sums.samples += double(r.total());
+}
+
+void accumulate_block_lags(const cv::Mat& grain_block, LagSums& lags) {
+    cv::Mat residual;
+    detrended_sigma(grain_block, &residual);
+    accumulate_lags(residual, lags);
 }
 
 cv::Mat block_dct_power(const cv::Mat& grain_block, LagSums* lags) {

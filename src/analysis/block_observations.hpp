@@ -51,17 +51,21 @@ struct ArEquations {
     double n = 0.0;
 };
 
-// Products of detrended grain with itself shifted by k samples along each axis, summed
-// over blocks: the grain's autocorrelation at short lags, which FGC cut-offs are matched on.
+// Products of detrended grain with itself shifted by k samples along each axis and by one
+// sample along each diagonal, summed over blocks: the grain's autocorrelation at short lags,
+// which FGC cut-offs are matched on.
 inline constexpr int kMaxCorrelationLag = 3;
 struct LagSums {
     std::array<double, kMaxCorrelationLag + 1> x{}, y{};              // [k]: sum g(x, y) g(x + k, y) / g(x, y + k)
     std::array<double, kMaxCorrelationLag + 1> x_pairs{}, y_pairs{};  // products summed
+    std::array<double, 2> diagonal{}, diagonal_pairs{};               // [0]: lag (1,1), [1]: lag (1,-1)
     double energy = 0, samples = 0;
     void add(const LagSums& o);
     // Normalized autocorrelation at lag k (0 without observations).
     double rx(int k) const;
     double ry(int k) const;
+    // ... at lag (1,1) (d = 0) or (1,-1) (d = 1).
+    double rd(int d) const;
 };
 
 struct PlaneObservations {
@@ -118,6 +122,9 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
 
 // Grain standard deviation of a block after removing its least-squares plane.
 double detrended_sigma(const cv::Mat& block, cv::Mat* residual);
+
+// Lag sums of one block of grain after the same detrending (no DCT).
+void accumulate_block_lags(const cv::Mat& grain_block, LagSums& lags);
 
 // Squared 64x64 DCT of a grain block after removing its plane (CV_64F), and its lag
 // products added to `lags`: what the FGC observations sum, and what the cut-off calibration

@@ -17,21 +17,37 @@ namespace filmgrain::analysis {
 
 inline constexpr int kMinCutoff = 2, kMaxCutoff = 14;  // RDD 5 / HM range of the signalled cut-offs
 
-// The synthesis' grain per signalled cut-off c, for one component: lag sums of grain made
-// with both cut-offs c (the template is separable: the horizontal correlation follows the
-// horizontal cut-off, the vertical the vertical).
+// The synthesis' grain per signalled cut-off pair, for one component: lag sums of grain made
+// with horizontal cut-off h and vertical cut-off v, at [h][v]. Measured per pair, not
+// composed from the axes: the deblocking across vertical block edges and the 16x16 mosaic
+// make the diagonal correlation no product of the axial ones.
 struct CutoffModels {
-    std::array<LagSums, kMaxCutoff + 1> lags{};
+    std::array<std::array<LagSums, kMaxCutoff + 1>, kMaxCutoff + 1> pairs{};
 };
+
+// The short lags the cut-offs are matched on: the 3x3 neighbourhood (both diagonals) and
+// lag 2 along each axis.
+inline constexpr int kMatchedLags = 6;
+std::array<double, kMatchedLags> matched_correlations(const LagSums& s);  // (1,0) (0,1) (1,1) (1,-1) (2,0) (0,2)
 
 struct CutoffEstimate {
     int horizontal = 8, vertical = 8;  // signalled cut-offs, 2..14
     std::array<double, kMaxCorrelationLag + 1> observed_x{}, observed_y{};  // normalized autocorrelation
-    double horizontal_mismatch = 0, vertical_mismatch = 0;  // correlation differences at the choice
+    std::array<double, 2> observed_diagonal{};                               // at (1,1) and (1,-1)
+    double mismatch = 0;  // mean |r_model - r_observed| over the matched lags, at the choice
 };
 
-// Per axis, the cut-off whose model grain correlates like the observed grain at lags 1 and 2.
+// Mean |r_model - r_observed| over the matched lags for the pair (h, v).
+double pair_mismatch(const LagSums& observed, const CutoffModels& models, int h, int v);
+
+// The cut-off pair whose model grain correlates like the observed grain at the matched lags
+// (least mean absolute difference).
 CutoffEstimate match_cutoffs(const LagSums& observed, const CutoffModels& models);
+
+// The standard error of the observed correlations at the matched lags (Bartlett's formula,
+// the matched lags standing for the grain's whole correlation): how far two pairs' mismatches
+// may differ by the observation's noise alone.
+double correlation_standard_error(const LagSums& observed);
 
 // Lag sums of the observation bins that overlap [lower, upper] (8-bit).
 LagSums lag_sums_in(const PlaneObservations& obs, int lower, int upper);

@@ -16,7 +16,7 @@ namespace filmgrain::analysis {
 namespace {
 
 constexpr int kCalibrationSize = 256;
-constexpr int kModelPlaneSize = 512;  // each plane of the cut-off models: 64 blocks of 64x64
+constexpr int kModelPlaneSize = 256;  // each plane of a cut-off pair's model: 16 blocks of 64x64
 constexpr int kMinDctBlocksPerInterval = 8;
 
 // The target synthesis measured on flat mid-grey pictures: grain level per unit of
@@ -44,17 +44,21 @@ public:
         FrameBuffer clean(w, h, {t_.chroma, t_.bit_depth}), grainy(w, h, {t_.chroma, t_.bit_depth});
         fill_frame(clean.view(), 128 << (t_.bit_depth - 8));
         CutoffModels m;
-        for (int cut = kMinCutoff; cut <= kMaxCutoff; cut++) {
-            // About 5 code values of grain: no clipping, rounding small beside it.
-            const double per_value = gain(c, cut, cut, 5, 32 << (t_.bit_depth - 8));
-            const int value = std::clamp(int(std::lround(5.0 * (1 << (t_.bit_depth - 8)) / per_value)), 1,
-                                         255 << (t_.bit_depth - 8));
-            synthesize(clean, grainy, c, cut, cut, 5, value);
-            const cv::Mat grain = plane_to_float(grainy.view(), c) - plane_to_float(clean.view(), c);
-            for (int y = 0; y + kDctBlock <= grain.rows; y += kDctBlock)
-                for (int x = 0; x + kDctBlock <= grain.cols; x += kDctBlock)
-                    block_dct_power(grain(cv::Rect(x, y, kDctBlock, kDctBlock)), &m.lags[cut]);
-        }
+        for (int hc = kMinCutoff; hc <= kMaxCutoff; hc++)
+            for (int vc = kMinCutoff; vc <= kMaxCutoff; vc++) {
+                // About 5 code values of grain: no clipping, rounding small beside it. The level per
+                // unit of a pair lies near the geometric mean of its axes' square pairs (the
+                // template is a product of its axes' band limits), close enough for that.
+                const int probe = 32 << (t_.bit_depth - 8);
+                const double per_value = std::sqrt(gain(c, hc, hc, 5, probe) * gain(c, vc, vc, 5, probe));
+                const int value = std::clamp(int(std::lround(5.0 * (1 << (t_.bit_depth - 8)) / per_value)), 1,
+                                             255 << (t_.bit_depth - 8));
+                synthesize(clean, grainy, c, hc, vc, 5, value);
+                const cv::Mat grain = plane_to_float(grainy.view(), c) - plane_to_float(clean.view(), c);
+                for (int y = 0; y + kDctBlock <= grain.rows; y += kDctBlock)
+                    for (int x = 0; x + kDctBlock <= grain.cols; x += kDctBlock)
+                        accumulate_block_lags(grain(cv::Rect(x, y, kDctBlock, kDctBlock)), m.pairs[hc][vc]);
+            }
         models_[c] = m;
         return *models_[c];
     }
@@ -249,20 +253,22 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
         } else {
             rep.note = "no flat 64x64 block: default cut-offs 8";
         }
-        // One cut-off pair for the component unless an interval's own spectrum says otherwise.
-        std::vector<std::pair<int, int>> own;
-        bool differs = false;
+        // One cut-off pair for the component unless an interval's own observations are matched
+        // better by another pair, by more than their noise can explain: where the model cannot
+        // reach the observed correlation (mismatch 0.1 on Boolean grain), pairs far apart
+        // score alike, and fewer blocks' noise alone would pick one of them per interval.
+        rep.cutoffs.clear();
         for (const auto& s : rep.intervals) {
             std::pair<int, int> pair{rep.pooled.horizontal, rep.pooled.vertical};
             if (dct_blocks_in(obs[c], s.lower, s.upper) >= kMinDctBlocksPerInterval) {
-                const auto ce = match_cutoffs(lag_sums_in(obs[c], s.lower, s.upper), cal.cutoff_models(c));
-                pair = {ce.horizontal, ce.vertical};
-                differs |= std::abs(pair.first - rep.pooled.horizontal) > 1 || std::abs(pair.second - rep.pooled.vertical) > 1;
+                const auto& models = cal.cutoff_models(c);
+                const LagSums own = lag_sums_in(obs[c], s.lower, s.upper);
+                const auto ce = match_cutoffs(own, models);
+                const double gain = pair_mismatch(own, models, pair.first, pair.second) - ce.mismatch;
+                if (gain > 2 * correlation_standard_error(own)) pair = {ce.horizontal, ce.vertical};
             }
-            own.push_back(pair);
+            rep.cutoffs.push_back(pair);
         }
-        rep.cutoffs = differs ? own : std::vector<std::pair<int, int>>(rep.intervals.size(),
-                                                                       {rep.pooled.horizontal, rep.pooled.vertical});
         rep.cutoff_pairs = distinct_pairs(rep.cutoffs);
         rep.present = !rep.intervals.empty();
         levels[c].intervals = rep.intervals;

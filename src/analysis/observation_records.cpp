@@ -8,7 +8,7 @@
 namespace filmgrain::analysis {
 namespace {
 
-constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '4'};
+constexpr char kTag[8] = {'F', 'G', 'O', 'B', 'S', '0', '0', '5'};
 
 class Writer {
 public:
@@ -71,6 +71,8 @@ std::vector<uint8_t> serialize_picture_observations(const PictureObservations& p
             const LagSums& l = p.lags[b];
             for (const auto* a : {&l.x, &l.y, &l.x_pairs, &l.y_pairs})
                 for (double v : *a) w.put<double>(v);
+            for (const auto* a : {&l.diagonal, &l.diagonal_pairs})
+                for (double v : *a) w.put<double>(v);
             w.put<double>(l.energy);
             w.put<double>(l.samples);
         }
@@ -117,6 +119,8 @@ PictureObservations deserialize_picture_observations(const uint8_t* data, std::s
             r.mat(p.dct_power[b], "dct_power");
             LagSums& l = p.lags[b];
             for (auto* a : {&l.x, &l.y, &l.x_pairs, &l.y_pairs})
+                for (double& v : *a) v = r.get<double>("lag sums");
+            for (auto* a : {&l.diagonal, &l.diagonal_pairs})
                 for (double& v : *a) v = r.get<double>("lag sums");
             l.energy = r.get<double>("lag sums");
             l.samples = r.get<double>("lag sums");

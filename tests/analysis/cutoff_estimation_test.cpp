@@ -1,5 +1,5 @@
-// Cut-off matching on lag correlations: the lag sums measure what they claim, and each axis
-// takes the model that correlates like the observation.
+// Cut-off matching on lag correlations: the lag sums measure what they claim, and the pair
+// whose model correlates like the observation at the matched lags wins, diagonals included.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,8 +11,9 @@
 namespace filmgrain::analysis {
 namespace {
 
-// Lag sums with correlation rho^k along x and sigma^k along y.
-LagSums geometric(double rho, double sigma) {
+// Lag sums with correlation rho^k along x and sigma^k along y, and `diagonal` at (1,1) and
+// (1,-1) (separable grain: rho * sigma).
+LagSums geometric(double rho, double sigma, double diagonal = -1) {
     LagSums s;
     s.energy = 1000, s.samples = 1000;
     for (int k = 1; k <= kMaxCorrelationLag; k++) {
@@ -20,12 +21,19 @@ LagSums geometric(double rho, double sigma) {
         s.x[k] = 500 * std::pow(rho, k);
         s.y[k] = 500 * std::pow(sigma, k);
     }
+    for (int d = 0; d < 2; d++) {
+        s.diagonal_pairs[d] = 500;
+        s.diagonal[d] = 500 * (diagonal < 0 ? rho * sigma : diagonal);
+    }
     return s;
 }
 
+double rho_of(int cutoff) { return 0.95 - 0.06 * cutoff; }  // finer grain (higher cut-off): less correlated
+
 CutoffModels models() {
-    CutoffModels m;  // finer grain (higher cut-off): less correlated
-    for (int c = kMinCutoff; c <= kMaxCutoff; c++) m.lags[c] = geometric(0.95 - 0.06 * c, 0.95 - 0.06 * c);
+    CutoffModels m;
+    for (int h = kMinCutoff; h <= kMaxCutoff; h++)
+        for (int v = kMinCutoff; v <= kMaxCutoff; v++) m.pairs[h][v] = geometric(rho_of(h), rho_of(v));
     return m;
 }
 
@@ -58,21 +66,57 @@ TEST(CutoffEstimation, LagSumsMeasureTheCorrelation) {
     EXPECT_NEAR(s.rx(1), 0.6, 0.03);
     EXPECT_NEAR(s.rx(2), 0.36, 0.04);
     EXPECT_NEAR(s.ry(1), 0.0, 0.03);
+    EXPECT_NEAR(s.rd(0), 0.0, 0.03);  // rows independent: nothing on the diagonals
+    EXPECT_NEAR(s.rd(1), 0.0, 0.03);
     LagSums none;
     EXPECT_EQ(none.rx(1), 0.0);
+    EXPECT_EQ(none.rd(0), 0.0);
 }
 
-TEST(CutoffEstimation, EachAxisTakesTheModelThatCorrelatesAlike) {
+TEST(CutoffEstimation, DiagonalLagsMeasureTheCorrelation) {
+    // g = w(x, y) + w(x + 1, y + 1): correlation 1/2 at (1,1), none at (1,-1) or on the axes
+    cv::RNG rng(5);
+    LagSums s;
+    for (int i = 0; i < 40; i++) {
+        cv::Mat w(65, 65, CV_32F);
+        rng.fill(w, cv::RNG::NORMAL, 0.0, 1.0);
+        cv::Mat g = w(cv::Rect(0, 0, 64, 64)) + w(cv::Rect(1, 1, 64, 64));
+        accumulate_lags(g, s);
+    }
+    EXPECT_NEAR(s.rd(0), 0.5, 0.03);
+    EXPECT_NEAR(s.rd(1), 0.0, 0.03);
+    EXPECT_NEAR(s.rx(1), 0.0, 0.03);
+    EXPECT_NEAR(s.ry(1), 0.0, 0.03);
+}
+
+TEST(CutoffEstimation, ThePairThatCorrelatesAlikeWins) {
     const CutoffModels m = models();
     for (int ch : {2, 7, 14})
         for (int cv_ : {3, 8, 13}) {
-            const CutoffEstimate e = match_cutoffs(geometric(0.95 - 0.06 * ch, 0.95 - 0.06 * cv_), m);
+            const CutoffEstimate e = match_cutoffs(geometric(rho_of(ch), rho_of(cv_)), m);
             EXPECT_EQ(e.horizontal, ch);
             EXPECT_EQ(e.vertical, cv_);
-            EXPECT_NEAR(e.horizontal_mismatch, 0.0, 1e-12);
+            EXPECT_NEAR(e.mismatch, 0.0, 1e-12);
         }
     // between two models: the nearer
-    EXPECT_EQ(match_cutoffs(geometric(0.95 - 0.06 * 6.2, 0.5), m).horizontal, 6);
+    EXPECT_EQ(match_cutoffs(geometric(rho_of(6) - 0.2 * 0.06, 0.5), m).horizontal, 6);
+}
+
+TEST(CutoffEstimation, TheDiagonalsWeighInTheChoice) {
+    // Models whose diagonal is no product of the axes: pair (h, v) correlates rho(h) and
+    // rho(v) on the axes, and the diagonal rises with h + v. An observation between the axial
+    // correlations of cut-offs 8 and 9 on both axes, with the diagonal of pair (9, 9), is pair
+    // (9, 9): the axes alone leave it a tie, which per-axis matching breaks without looking.
+    CutoffModels m;
+    const auto diagonal = [](int h, int v) { return 0.05 * (h + v) - 0.4; };
+    for (int h = kMinCutoff; h <= kMaxCutoff; h++)
+        for (int v = kMinCutoff; v <= kMaxCutoff; v++) m.pairs[h][v] = geometric(rho_of(h), rho_of(v), diagonal(h, v));
+    const double mid = (rho_of(8) + rho_of(9)) / 2;
+    for (int pick : {8, 9}) {
+        const CutoffEstimate e = match_cutoffs(geometric(mid, mid, diagonal(pick, pick)), m);
+        EXPECT_EQ(e.horizontal, pick);
+        EXPECT_EQ(e.vertical, pick);
+    }
 }
 
 TEST(CutoffEstimation, BinsSelectedByIntensity) {
