@@ -123,12 +123,12 @@ cv::Mat observe_plane(const cv::Mat& source, const cv::Mat& denoised, const cv::
 // Grain standard deviation of a block after removing its least-squares plane.
 double detrended_sigma(const cv::Mat& block, cv::Mat* residual);
 
-// Lag sums of one block of grain after the same detrending (no DCT).
+// Lag sums of one block of grain after the same detrending as block_dct_power, without its
+// DCT: what the cut-off calibration measures on synthesized grain.
 void accumulate_block_lags(const cv::Mat& grain_block, LagSums& lags);
 
 // Squared 64x64 DCT of a grain block after removing its plane (CV_64F), and its lag
-// products added to `lags`: what the FGC observations sum, and what the cut-off calibration
-// measures on synthesized grain.
+// products added to `lags`: what the FGC observations sum.
 cv::Mat block_dct_power(const cv::Mat& grain_block, LagSums* lags = nullptr);
 
 // Lag products of one (detrended) block.

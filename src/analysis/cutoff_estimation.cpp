@@ -52,6 +52,16 @@ CutoffEstimate match_cutoffs(const LagSums& observed, const CutoffModels& models
     return c;
 }
 
+// Where the model cannot reach the observed correlation (mismatch 0.1 on Boolean grain), pairs
+// far apart score alike, and the noise of an interval's fewer blocks alone would pick one of
+// them per interval.
+std::pair<int, int> interval_cutoffs(const LagSums& interval, const CutoffEstimate& pooled, const CutoffModels& models) {
+    const CutoffEstimate own = match_cutoffs(interval, models);
+    const double gain = pair_mismatch(interval, models, pooled.horizontal, pooled.vertical) - own.mismatch;
+    if (gain > 2 * correlation_standard_error(interval)) return {own.horizontal, own.vertical};
+    return {pooled.horizontal, pooled.vertical};
+}
+
 LagSums lag_sums_in(const PlaneObservations& obs, int lower, int upper) {
     LagSums s;
     for (int b = 0; b < kPowerBins; b++)

@@ -8,6 +8,7 @@
 // power marginals chose different cut-offs on the two axes of isotropic grain.)
 #pragma once
 #include <array>
+#include <utility>
 
 #include <opencv2/core.hpp>
 
@@ -48,6 +49,10 @@ CutoffEstimate match_cutoffs(const LagSums& observed, const CutoffModels& models
 // the matched lags standing for the grain's whole correlation): how far two pairs' mismatches
 // may differ by the observation's noise alone.
 double correlation_standard_error(const LagSums& observed);
+
+// The pair an intensity interval signals: the component's pooled pair, unless another pair
+// matches the interval's own observations better by more than twice their standard error.
+std::pair<int, int> interval_cutoffs(const LagSums& interval, const CutoffEstimate& pooled, const CutoffModels& models);
 
 // Lag sums of the observation bins that overlap [lower, upper] (8-bit).
 LagSums lag_sums_in(const PlaneObservations& obs, int lower, int upper);

@@ -253,22 +253,13 @@ FgcEstimate estimate_fgc(const std::array<PlaneObservations, 3>& obs, const FgcT
         } else {
             rep.note = "no flat 64x64 block: default cut-offs 8";
         }
-        // One cut-off pair for the component unless an interval's own observations are matched
-        // better by another pair, by more than their noise can explain: where the model cannot
-        // reach the observed correlation (mismatch 0.1 on Boolean grain), pairs far apart
-        // score alike, and fewer blocks' noise alone would pick one of them per interval.
+        // One cut-off pair for the component unless an interval's own observations, where there
+        // are enough of them, call for another.
         rep.cutoffs.clear();
-        for (const auto& s : rep.intervals) {
-            std::pair<int, int> pair{rep.pooled.horizontal, rep.pooled.vertical};
-            if (dct_blocks_in(obs[c], s.lower, s.upper) >= kMinDctBlocksPerInterval) {
-                const auto& models = cal.cutoff_models(c);
-                const LagSums own = lag_sums_in(obs[c], s.lower, s.upper);
-                const auto ce = match_cutoffs(own, models);
-                const double gain = pair_mismatch(own, models, pair.first, pair.second) - ce.mismatch;
-                if (gain > 2 * correlation_standard_error(own)) pair = {ce.horizontal, ce.vertical};
-            }
-            rep.cutoffs.push_back(pair);
-        }
+        for (const auto& s : rep.intervals)
+            rep.cutoffs.push_back(dct_blocks_in(obs[c], s.lower, s.upper) >= kMinDctBlocksPerInterval
+                                      ? interval_cutoffs(lag_sums_in(obs[c], s.lower, s.upper), rep.pooled, cal.cutoff_models(c))
+                                      : std::pair<int, int>{rep.pooled.horizontal, rep.pooled.vertical});
         rep.cutoff_pairs = distinct_pairs(rep.cutoffs);
         rep.present = !rep.intervals.empty();
         levels[c].intervals = rep.intervals;

@@ -119,6 +119,33 @@ TEST(CutoffEstimation, TheDiagonalsWeighInTheChoice) {
     }
 }
 
+// Lag sums of `samples` samples correlating like the separable model of pair (h, v).
+LagSums observed_like(int h, int v, double samples) {
+    LagSums s = geometric(rho_of(h), rho_of(v));
+    const double scale = samples / s.samples;
+    for (auto* a : {&s.x, &s.y, &s.x_pairs, &s.y_pairs})
+        for (double& e : *a) e *= scale;
+    for (auto* a : {&s.diagonal, &s.diagonal_pairs})
+        for (double& e : *a) e *= scale;
+    s.energy *= scale, s.samples = samples;
+    return s;
+}
+
+TEST(CutoffEstimation, AnIntervalKeepsThePooledPairUnlessItsOwnFitsBetterThanItsNoise) {
+    const CutoffModels m = models();
+    CutoffEstimate pooled;
+    pooled.horizontal = 10, pooled.vertical = 10;
+    // an interval correlating like (9, 10), one step from the pooled pair (mean difference
+    // 0.025 over the matched lags): seen in one 64x64 block (twice the standard error 0.041)
+    // the step is within the noise, in 8 blocks (0.015) it is not
+    EXPECT_EQ(interval_cutoffs(observed_like(9, 10, 4096), pooled, m), std::make_pair(10, 10));
+    EXPECT_EQ(interval_cutoffs(observed_like(9, 10, 8 * 4096), pooled, m), std::make_pair(9, 10));
+    // far from it: its own pair even in one block
+    EXPECT_EQ(interval_cutoffs(observed_like(4, 4, 4096), pooled, m), std::make_pair(4, 4));
+    // an interval that is the pooled pair keeps it
+    EXPECT_EQ(interval_cutoffs(observed_like(10, 10, 400 * 4096), pooled, m), std::make_pair(10, 10));
+}
+
 TEST(CutoffEstimation, BinsSelectedByIntensity) {
     PlaneObservations obs;
     obs.lags[2] = geometric(0.5, 0.5);  // 8-bit 32..47
