@@ -165,10 +165,13 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
         if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1) {
             // 8-bit grain is deblocked and blended straight from the blocks' table rows
             const int y = y_top + l0;
-            const bool ahead = prefetch_next && y + band_rows - 1 + kRandBlock < h;
+            using Ahead = simd::NextStripeRow<Pixel>;
+            const Ahead ahead = prefetch_next && y + band_rows - 1 + kRandBlock < h
+                                    ? Ahead{src.row<const Pixel>(y + kRandBlock), dst.row<Pixel>(y + kRandBlock)}
+                                    : Ahead{};
             simd::deblock_blend_block_rows_u8_i8(src.row<const Pixel>(y), src.stride, dst.row<Pixel>(y), dst.stride,
                                                  block_row, r0, pitch, band_rows, w, zero_from, kBlock, band - 1,
-                                                 ahead ? src.row<const Pixel>(y + kRandBlock) : nullptr);
+                                                 ahead);
             continue;
         }
         auto gather = [&](int n) {
@@ -191,7 +194,10 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
             const int y = y_top + l0 + l;
             // the same row of the next stripe, whose block sums come next (prefetched as this
             // row is blended)
-            const Pixel* ahead = prefetch_next && y + kRandBlock < h ? src.row<const Pixel>(y + kRandBlock) : nullptr;
+            using Ahead = simd::NextStripeRow<Pixel>;
+            const Ahead ahead = prefetch_next && y + kRandBlock < h
+                                    ? Ahead{src.row<const Pixel>(y + kRandBlock), dst.row<Pixel>(y + kRandBlock)}
+                                    : Ahead{};
             // (8-bit pictures with int8 grain took the branch above)
             if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 2)
                 simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);

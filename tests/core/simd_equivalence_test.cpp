@@ -123,17 +123,27 @@ TEST_P(SimdEquivalence, FgcDeblockAndBlend) {
             std::vector<uint8_t> src(static_cast<std::size_t>(width)), want(src.size()), got(src.size());
             for (auto& v : src) v = uint8_t(uniform(0, 255));
             fgc::blend_row_additive<uint8_t>(src.data(), want.data(), g32.data(), width, 8);
-            const std::vector<uint8_t> ahead(src.size());  // a row to prefetch, half the time
-            fgc::simd::deblock_blend_row_u8(src.data(), got.data(), g16.data(), width, bs,
-                                            uniform(0, 1) ? ahead.data() : nullptr);
+            // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect,
+            // and the one to write stays untouched
+            const std::vector<uint8_t> ahead(src.size());
+            std::vector<uint8_t> ahead_out(src.size(), uint8_t(0x5A));
+            using Ahead = fgc::simd::NextStripeRow<uint8_t>;
+            const Ahead next{uniform(0, 1) ? ahead.data() : nullptr, uniform(0, 1) ? ahead_out.data() : nullptr};
+            fgc::simd::deblock_blend_row_u8(src.data(), got.data(), g16.data(), width, bs, next);
+            ASSERT_EQ(ahead_out, std::vector<uint8_t>(src.size(), uint8_t(0x5A)));
             ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs;
         } else {
             std::vector<uint16_t> src(static_cast<std::size_t>(width)), want(src.size()), got(src.size());
             for (auto& v : src) v = uint16_t(uniform(0, (1 << bd) - 1));
             fgc::blend_row_additive<uint16_t>(src.data(), want.data(), g32.data(), width, bd);
+            // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect,
+            // and the one to write stays untouched
             const std::vector<uint16_t> ahead(src.size());
-            fgc::simd::deblock_blend_row_u16(src.data(), got.data(), g16.data(), width, bs, bd,
-                                             uniform(0, 1) ? ahead.data() : nullptr);
+            std::vector<uint16_t> ahead_out(src.size(), uint16_t(0x5A));
+            using Ahead = fgc::simd::NextStripeRow<uint16_t>;
+            const Ahead next{uniform(0, 1) ? ahead.data() : nullptr, uniform(0, 1) ? ahead_out.data() : nullptr};
+            fgc::simd::deblock_blend_row_u16(src.data(), got.data(), g16.data(), width, bs, bd, next);
+            ASSERT_EQ(ahead_out, std::vector<uint16_t>(src.size(), uint16_t(0x5A)));
             ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs << " bd " << bd;
         }
     }

@@ -19,7 +19,8 @@ namespace avx512 {
 // row of the block before or after the vector. The arithmetic is DeblockBlendRowU8I8's.
 inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                    std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
-                                   std::ptrdiff_t pitch, int rows, int width, int grain_end, const uint8_t* ahead) {
+                                   std::ptrdiff_t pitch, int rows, int width, int grain_end,
+                                   NextStripeRow<uint8_t> ahead) {
     // columns 0..len-1 of a vector
     auto first_n = [](int len) -> __mmask64 {
         return len <= 0 ? 0 : len >= 64 ? ~__mmask64(0) : (__mmask64(1) << len) - 1;
@@ -53,7 +54,7 @@ inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride
             const __m512i sv = _mm512_xor_si512(_mm512_maskz_loadu_epi8(inside, s), bias);
             _mm512_mask_storeu_epi8(d, inside, _mm512_xor_si512(_mm512_adds_epi8(sv, g), bias));
         }
-        if (ahead) PrefetchAhead(ahead + r * src_stride, x);
+        PrefetchAhead(ahead.below(r, src_stride, dst_stride), x);
     };
     // Columns x .. x + 63, all before `end`; the block before them (has_left) and the one
     // after (has_right) are read too.

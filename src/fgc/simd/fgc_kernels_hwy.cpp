@@ -88,17 +88,19 @@ inline int32_t deblocked_scalar(const G* g, int x, int width, int bs) {
     return g[x];
 }
 
-// The blend kernels touch the same row of the next stripe (`ahead`, or nullptr) as they go:
-// that stripe's block sums are otherwise the first read of a picture the decoder wrote long
+// The blend kernels touch the same row of the next stripe (NextStripeRow) as they go: that
+// stripe's block sums are otherwise the first read of a picture the decoder wrote long
 // enough ago to have left the caches (in `filmgrain decode` of a 1080p 8-bit HEVC stream
-// they took 0.19-0.25 of 0.69-0.82 ms per frame; with the prefetch 0.08-0.09 of 0.61-0.64).
+// they took 0.19-0.25 of 0.69-0.82 ms per frame; with the prefetch 0.08-0.09 of 0.61-0.64),
+// and the output row is fetched for writing before its stores wait on it (fgc_kernels.hpp).
 template <typename T>
-HWY_INLINE void PrefetchAhead(const T* ahead, int x) {
-    if (ahead) __builtin_prefetch(ahead + x, 0, 2);
+HWY_INLINE void PrefetchAhead(const NextStripeRow<T>& ahead, int x) {
+    if (ahead.src) __builtin_prefetch(ahead.src + x, 0, 2);
+    if (ahead.dst) __builtin_prefetch(ahead.dst + x, 1, 2);
 }
 
 void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size,
-                       const uint8_t* ahead) {
+                       NextStripeRow<uint8_t> ahead) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint8_t, decltype(d16)> d8;
     const int n = int(hn::Lanes(d16));
@@ -143,7 +145,7 @@ void DeblockBlendRowU8(const uint8_t* src, uint8_t* dst, const int16_t* grain, i
 // Biasing the picture by 128 the other way makes clip(src + g, 0, 255) a signed
 // saturating add.
 void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size,
-                         const uint8_t* ahead) {
+                         NextStripeRow<uint8_t> ahead) {
     const hn::ScalableTag<uint8_t> du;
     const hn::RebindToSigned<decltype(du)> di;
     const int n = int(hn::Lanes(du));
@@ -212,7 +214,7 @@ void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, 
 // so a saturating add gives the same result.
 template <typename G>
 void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
-                              int bit_depth, const uint16_t* ahead) {
+                              int bit_depth, NextStripeRow<uint16_t> ahead) {
     const hn::ScalableTag<int16_t> d16;
     const hn::Rebind<uint16_t, decltype(d16)> du16;
     const int n = int(hn::Lanes(d16));
@@ -260,7 +262,7 @@ void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain
 
 template <typename G>
 void DeblockBlendRowU16Of(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
-                            int bit_depth, const uint16_t* ahead) {
+                            int bit_depth, NextStripeRow<uint16_t> ahead) {
     if (bit_depth <= 12) return DeblockBlendRowU16Narrow<G>(src, dst, grain, width, block_size, bit_depth, ahead);
     const hn::ScalableTag<int32_t> d32;
     const hn::Rebind<G, decltype(d32)> dg;
@@ -304,11 +306,11 @@ void DeblockBlendRowU16Of(const uint16_t* src, uint16_t* dst, const G* grain, in
 }
 
 void DeblockBlendRowU16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
-                        int bit_depth, const uint16_t* ahead) {
+                        int bit_depth, NextStripeRow<uint16_t> ahead) {
     DeblockBlendRowU16Of<int16_t>(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 void DeblockBlendRowU16I8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
-                          int bit_depth, const uint16_t* ahead) {
+                          int bit_depth, NextStripeRow<uint16_t> ahead) {
     DeblockBlendRowU16Of<int8_t>(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 
@@ -360,7 +362,7 @@ void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int 
 void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                     std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
                                     std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
-                                    const uint8_t* ahead) {
+                                    NextStripeRow<uint8_t> ahead) {
     int8_t* g = row + 1;
     const int end = std::min(grain_end, width + 1);
     const int count = (end + block - 1) / block;
@@ -368,7 +370,7 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
         GatherBlockBandsI8(blocks, offset + r * pitch, count, block, 1, 0, g, 0);
         std::fill(g + end, g + width + 2, int8_t(0));
         DeblockBlendRowU8I8(src + r * src_stride, dst + r * dst_stride, g, width, block,
-                            ahead ? ahead + r * src_stride : nullptr);
+                            ahead.below(r, src_stride, dst_stride));
     }
 }
 
@@ -377,7 +379,7 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
 void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
                                std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
-                               const uint8_t* ahead) {
+                               NextStripeRow<uint8_t> ahead) {
 #if HWY_TARGET == HWY_AVX3
     if (block == 8)
         return avx512::DeblockBlendBlockRows8(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
@@ -476,19 +478,19 @@ void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shi
     HWY_DYNAMIC_DISPATCH(ScaleTemplateBlocks)(blocks, count, rows, shift, dst_stride);
 }
 void deblock_blend_row_u8(const uint8_t* src, uint8_t* dst, const int16_t* grain, int width, int block_size,
-                          const uint8_t* ahead) {
+                          NextStripeRow<uint8_t> ahead) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8)(src, dst, grain, width, block_size, ahead);
 }
 void deblock_blend_row_u16(const uint16_t* src, uint16_t* dst, const int16_t* grain, int width, int block_size,
-                           int bit_depth, const uint16_t* ahead) {
+                           int bit_depth, NextStripeRow<uint16_t> ahead) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16)(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 void deblock_blend_row_u8_i8(const uint8_t* src, uint8_t* dst, const int8_t* grain, int width, int block_size,
-                             const uint8_t* ahead) {
+                             NextStripeRow<uint8_t> ahead) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendRowU8I8)(src, dst, grain, width, block_size, ahead);
 }
 void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* grain, int width, int block_size,
-                              int bit_depth, const uint16_t* ahead) {
+                              int bit_depth, NextStripeRow<uint16_t> ahead) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendRowU16I8)(src, dst, grain, width, block_size, bit_depth, ahead);
 }
 void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, int count, int block, int rows,
@@ -498,7 +500,7 @@ void gather_block_bands_i8(const int8_t* const* blocks, std::ptrdiff_t offset, i
 void deblock_blend_block_rows_u8_i8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                     std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
                                     std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
-                                    const uint8_t* ahead) {
+                                    NextStripeRow<uint8_t> ahead) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendBlockRowsU8I8)(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows,
                                                     width, grain_end, block, row, ahead);
 }
