@@ -10,6 +10,7 @@
 
 #include "core/simd_targets.hpp"
 #include "forced_simd_target.hpp"
+#include "prefetched_rows.hpp"
 #include "fgc/blending.hpp"
 #include "fgc/deblocking.hpp"
 #include "fgc/simd/fgc_kernels.hpp"
@@ -46,14 +47,11 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendInt8Grain8Bit) {
         std::vector<uint8_t> src(std::size_t(width) + 1), want(src.size(), 0xA5), got(src.size(), 0xA5);
         for (auto& v : src) v = uint8_t(uniform(0, 3) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
         fgc::blend_row_additive<uint8_t>(src.data(), want.data(), g.deblocked.data(), width, 8);
-        // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect,
-        // and the one to write stays untouched
-        const std::vector<uint8_t> ahead(src.size());
-        std::vector<uint8_t> ahead_out(src.size(), uint8_t(0x5A));
-        using Ahead = fgc::simd::NextStripeRow<uint8_t>;
-        const Ahead next{uniform(0, 1) ? ahead.data() : nullptr, uniform(0, 1) ? ahead_out.data() : nullptr};
+        // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect
+        test_support::PrefetchedRows<uint8_t> ahead(src.size());
+        const auto next = ahead.pick([&] { return uniform(0, 1) == 1; });
         fgc::simd::deblock_blend_row_u8_i8(src.data(), got.data(), g.grain(), width, bs, next);
-        ASSERT_EQ(ahead_out, std::vector<uint8_t>(src.size(), uint8_t(0x5A)));
+        ASSERT_TRUE(ahead.untouched()) << "a prefetched row was written";
         ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs
                              << " (the last byte is past the row and must stay untouched)";
     }
@@ -68,14 +66,11 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendInt8Grain16Bit) {
         const int max_value = (1 << bd) - 1;
         for (auto& v : src) v = uint16_t(uniform(0, 3) == 0 ? max_value * uniform(0, 1) : uniform(0, max_value));
         fgc::blend_row_additive<uint16_t>(src.data(), want.data(), g.deblocked.data(), width, bd);
-        // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect,
-        // and the one to write stays untouched
-        const std::vector<uint16_t> ahead(src.size());
-        std::vector<uint16_t> ahead_out(src.size(), uint16_t(0x5A));
-        using Ahead = fgc::simd::NextStripeRow<uint16_t>;
-        const Ahead next{uniform(0, 1) ? ahead.data() : nullptr, uniform(0, 1) ? ahead_out.data() : nullptr};
+        // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect
+        test_support::PrefetchedRows<uint16_t> ahead(src.size());
+        const auto next = ahead.pick([&] { return uniform(0, 1) == 1; });
         fgc::simd::deblock_blend_row_u16_i8(src.data(), got.data(), g.grain(), width, bs, bd, next);
-        ASSERT_EQ(ahead_out, std::vector<uint16_t>(src.size(), uint16_t(0x5A)));
+        ASSERT_TRUE(ahead.untouched()) << "a prefetched row was written";
         ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " bs " << bs << " bd " << bd;
     }
 }
@@ -132,15 +127,12 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) {
                                              width, 8);
         }
         std::vector<int8_t> row(std::size_t(std::max(padded, width + 2)) + 1, int8_t(uniform(-128, 127)));
-        // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect,
-        // and the one to write stays untouched
-        const std::vector<uint8_t> ahead(src.size());
-        std::vector<uint8_t> ahead_out(src.size(), uint8_t(0x5A));
-        using Ahead = fgc::simd::NextStripeRow<uint8_t>;
-        const Ahead next{uniform(0, 1) ? ahead.data() : nullptr, uniform(0, 1) ? ahead_out.data() : nullptr};
+        // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect
+        test_support::PrefetchedRows<uint8_t> ahead(src.size());
+        const auto next = ahead.pick([&] { return uniform(0, 1) == 1; });
         fgc::simd::deblock_blend_block_rows_u8_i8(src.data(), src_stride, got.data(), dst_stride, blocks.data(), offset,
                                                   kPitch, rows, width, grain_end, bs, row.data(), next);
-        ASSERT_EQ(ahead_out, std::vector<uint8_t>(src.size(), uint8_t(0x5A)));
+        ASSERT_TRUE(ahead.untouched()) << "a prefetched row was written";
         ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " rows " << rows << " bs " << bs
                              << " grain_end " << grain_end << " (bytes between and past the rows must stay untouched)";
     }
