@@ -140,8 +140,10 @@ void GrainRowU16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int
 
 // Scaling and blending in int32 lanes: the scale (<= 255) times the grain (|g| <= 159)
 // can pass 32767, and 10-bit input may hold any 16-bit value.
+// Samples from `x` on.
 template <bool kTo8Bit, typename In, typename Out>
-HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* grain, const int16_t* scale, Out* out) {
+HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* grain, const int16_t* scale, Out* out,
+                         int x = 0) {
     const hn::ScalableTag<int32_t> d;
     const hn::Rebind<int16_t, decltype(d)> d16;
     const hn::Rebind<In, decltype(d)> din;
@@ -151,7 +153,6 @@ HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* gr
     const auto two = hn::Set(d, 2);
     const auto round = hn::Set(d, 1 << (job.shift - 1));
     const auto hi = hn::Set(d, 255 << (job.bit_depth - 8));
-    int x = 0;
     for (; x + n <= job.width; x += n) {
         const auto g = hn::PromoteTo(d, hn::LoadU(d16, grain + x));
         const auto sc = hn::PromoteTo(d, hn::LoadU(d16, scale + x));
@@ -166,8 +167,40 @@ HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* gr
     }
 }
 
+// 8 bits in int16 lanes, twice as many per vector: there scale_shift() is 8..13
+// (log2_scale_factor - model_id is 2..7), and from a shift of 8 on the scaled value of any
+// int16 grain (255 * 32768 >> 8) fits int16. The product's two halves (pmullw, pmulhw),
+// with the rounding's carry into the high one, give the int32 product's shift exactly; the
+// sum with the sample saturates where the 0..255 clip would cut it anyway. Returns where the
+// remaining samples start.
+HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale,
+                               uint8_t* out) {
+    const hn::ScalableTag<int16_t> d;
+    const hn::RebindToUnsigned<decltype(d)> du;
+    const hn::Rebind<uint8_t, decltype(d)> d8;
+    const int n = static_cast<int>(hn::Lanes(d));
+    const int shift = job.shift;
+    const auto round = hn::Set(du, static_cast<uint16_t>(1u << (shift - 1)));
+    int x = 0;
+    for (; x + n <= job.width; x += n) {
+        const auto g = hn::LoadU(d, grain + x);
+        const auto sc = hn::LoadU(d, scale + x);
+        const auto low = hn::Add(hn::BitCast(du, hn::Mul(sc, g)), round);
+        // all ones (-1) where the low half wrapped: the carry, subtracted
+        const auto carry = hn::BitCast(d, hn::VecFromMask(du, hn::Lt(low, round)));
+        const auto high = hn::Sub(hn::MulHigh(sc, g), carry);
+        const auto scaled = hn::Or(hn::BitCast(d, hn::ShiftRightSame(low, shift)), hn::ShiftLeftSame(high, 16 - shift));
+        const auto sample = hn::BitCast(d, hn::PromoteTo(du, hn::LoadU(d8, in + x)));
+        hn::StoreU(hn::DemoteTo(d8, hn::SaturatedAdd(sample, scaled)), d8, out + x);
+    }
+    return x;
+}
+
 void BlendRowU8(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale, uint8_t* out) {
-    BlendRow<false>(job, in, grain, scale, out);
+    const int from = job.bit_depth == 8 && job.shift >= 8 && job.shift <= 15
+                         ? BlendRowU8Int16(job, in, grain, scale, out)
+                         : 0;
+    BlendRow<false>(job, in, grain, scale, out, from);
 }
 void BlendRowU16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                  uint16_t* out) {
