@@ -138,9 +138,9 @@ void GrainRowU16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int
     GrainRow(job, in, grain, scale);
 }
 
-// Scaling and blending in int32 lanes: the scale (<= 255) times the grain (|g| <= 159)
-// can pass 32767, and 10-bit input may hold any 16-bit value.
-// Samples from `x` on.
+// Scaling and blending in int32 lanes, from sample `x` on: the scale (<= 255) times the
+// grain (|g| <= 159) can pass 32767, and 10-bit input may hold any 16-bit value (8 bits take
+// BlendRowU8Int16 first, below).
 template <bool kTo8Bit, typename In, typename Out>
 HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* grain, const int16_t* scale, Out* out,
                          int x = 0) {
