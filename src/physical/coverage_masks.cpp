@@ -35,15 +35,15 @@ SampleClasses group_samples_by_class(const SamplePoints& points) {
         c.begin[cls] = at;
         at += (c.size[cls] + kClassPointPad - 1) / kClassPointPad * kClassPointPad;
     }
-    c.words = std::max(1, int((largest + 63) / 64));
+    c.words = std::max(1, int((largest + kMaskWordBits - 1) / kMaskWordBits));
     c.lx.assign(at, std::numeric_limits<float>::quiet_NaN());
     c.ly.assign(at, std::numeric_limits<float>::quiet_NaN());
     for (int i = 0; i < n; i++) {
         const uint32_t cls = c.sample_class[std::size_t(i)], j = place[std::size_t(i)];
         c.lx[c.begin[cls] + j] = points.steps_x()[std::size_t(i)].local;
         c.ly[c.begin[cls] + j] = points.steps_y()[std::size_t(i)].local;
-        c.sample_word[std::size_t(i)] = j / 64;
-        c.sample_bit[std::size_t(i)] = uint8_t(j % 64);
+        c.sample_word[std::size_t(i)] = j / kMaskWordBits;
+        c.sample_bit[std::size_t(i)] = uint8_t(j % kMaskWordBits);
     }
     return c;
 }
@@ -62,7 +62,7 @@ MaskLayout mask_layout(const BinGrid& grid, const SampleClasses& classes) {
 }
 
 void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const MaskLayout& layout,
-                                    const SampleClasses& classes, uint64_t* masks) {
+                                    const SampleClasses& classes, MaskWord* masks) {
     const BinGrid& grid = layout.grid;
     const std::size_t words = std::size_t(layout.words);
     for (std::size_t i = 0; i < n; i++) {
@@ -76,9 +76,10 @@ void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const Ma
                 const uint32_t cls = layout.row_class[std::size_t(by)] + layout.col_class[std::size_t(bx)];
                 const float* lx = classes.lx.data() + classes.begin[cls];
                 const float* ly = classes.ly.data() + classes.begin[cls];
-                uint64_t* mask = masks + std::size_t(by * grid.nbx + bx) * words;
+                MaskWord* mask = masks + std::size_t(by * grid.nbx + bx) * words;
                 for (uint32_t j = 0; j < classes.size[cls]; j++)
-                    if (inside_grain(lx[j], ly[j], gx, gy, r2)) mask[j / 64] |= uint64_t(1) << (j % 64);
+                    if (inside_grain(lx[j], ly[j], gx, gy, r2))
+                        mask[j / kMaskWordBits] |= MaskWord(1u << (j % kMaskWordBits));
             }
         }
     }
@@ -86,7 +87,7 @@ void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const Ma
 
 std::size_t paint_tile_masks(GrainField& field, const CellIntensity& intensity, const GrainRadiusLaw& radius,
                              uint64_t seed, double x0, double y0, double x1, double y1, const SampleClasses& classes,
-                             bool reference, std::vector<uint64_t>& masks) {
+                             bool reference, std::vector<MaskWord>& masks) {
     const MaskLayout layout =
         mask_layout(bin_grid_over(x0, y0, x1, y1, classes.cells_per_pixel), classes);
     masks.assign(std::size_t(layout.grid.nbx * layout.grid.nby) * std::size_t(layout.words), 0);

@@ -23,9 +23,17 @@ namespace filmgrain::physical {
 // (with NaN, which no grain covers), and every mask holds at least that many bits.
 constexpr int kClassPointPad = 16;
 
+// A bin's mask is made of 16-bit words: at the smallest radii a class holds about eight
+// points (800 samples over 10x10 bins per pixel), and the estimator reads one word per sample
+// from some fifty bin rows, so a word no wider than the class keeps those rows in L1/L2
+// cache (64-bit words made them four times larger). A vector of at most 16 lanes never
+// straddles two words.
+using MaskWord = uint16_t;
+constexpr int kMaskWordBits = 16;
+
 struct SampleClasses {
     int cells_per_pixel = 1;
-    int words = 1;  // 64-bit words per bin mask
+    int words = 1;  // MaskWords per bin mask
     // Class c = (sy mod k_c) * k_c + (sx mod k_c): its points are lx/ly[begin[c], begin[c] + size[c]).
     std::vector<uint32_t> begin, size;
     std::vector<float> lx, ly;
@@ -51,15 +59,15 @@ MaskLayout mask_layout(const BinGrid& grid, const SampleClasses& classes);
 // OR over the grains its list would hold (GrainField), with no list to build. The scalar
 // reference, and the vector kernel that must equal it.
 void paint_coverage_masks_reference(const Grain* grains, std::size_t n, const MaskLayout& layout,
-                                    const SampleClasses& classes, uint64_t* masks);
+                                    const SampleClasses& classes, MaskWord* masks);
 void paint_coverage_masks_optimized(const Grain* grains, std::size_t n, const MaskLayout& layout,
-                                    const SampleClasses& classes, uint64_t* masks);
+                                    const SampleClasses& classes, MaskWord* masks);
 
 // Generates the grains that reach [x0, x1] x [y0, y1] (GrainField::generate_by_cell_rows)
 // and paints the masks of every bin of the grid over that rectangle (row-major, `words` per
 // bin) from them. Returns the grain count.
 std::size_t paint_tile_masks(GrainField& field, const CellIntensity& intensity, const GrainRadiusLaw& radius,
                              uint64_t seed, double x0, double y0, double x1, double y1, const SampleClasses& classes,
-                             bool reference, std::vector<uint64_t>& masks);
+                             bool reference, std::vector<MaskWord>& masks);
 
 }  // namespace filmgrain::physical

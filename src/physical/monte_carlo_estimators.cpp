@@ -81,12 +81,12 @@ void estimate_pixel_wise_by_masks(const BinGrid& grid, const TileRect& rect, con
         word_at[std::size_t(i)] = (pts.steps_y()[std::size_t(i)].bin * nbx + pts.steps_x()[std::size_t(i)].bin) * words +
                                   cls.sample_word[std::size_t(i)];
     const uint8_t* bit_at = cls.sample_bit.data();
-    const uint64_t* masks = out.masks.data();
+    const MaskWord* masks = out.masks.data();
     const int w = rect.x1 - rect.x0;
     for (int y = rect.y0; y < rect.y1; y++) {
         const int64_t row = (kc * y - grid.by0) * nbx;
         for (int x = rect.x0; x < rect.x1; x++) {
-            const uint64_t* base = masks + (row + kc * x - grid.bx0) * words;
+            const MaskWord* base = masks + (row + kc * x - grid.bx0) * words;
             int hits = 0;
             for (int i = 0; i < count; i++) hits += int((base[word_at[std::size_t(i)]] >> bit_at[i]) & 1u);
             out.value[std::size_t(y - rect.y0) * w + (x - rect.x0)] = float(double(hits) / count);

@@ -26,7 +26,7 @@ struct TileEstimate {
     std::vector<float> value;  // row-major over the tile
     long long samples_total = 0;
     int samples_min = 0, samples_max = 0;
-    std::vector<uint64_t> masks;  // scratch of the mask estimator, kept between tiles
+    std::vector<MaskWord> masks;  // scratch of the mask estimator, kept between tiles
 };
 
 // Per pixel, each sample point is looked up in its bin. With a tolerance, sampling of a

@@ -42,7 +42,7 @@ TEST_P(CoverageMaskEquivalence, OptimizedEqualsReference) {
             largest = std::max(largest, c.size[cls]);
             at += (c.size[cls] + kClassPointPad - 1) / kClassPointPad * kClassPointPad;
         }
-        c.words = std::max(1, int((largest + 63) / 64)) + uniform(0, 1);
+        c.words = std::max(1, int((largest + kMaskWordBits - 1) / kMaskWordBits)) + uniform(0, 1);
         c.lx.assign(at, std::numeric_limits<float>::quiet_NaN());
         c.ly = c.lx;
         for (std::size_t cls = 0; cls < classes; cls++)
@@ -67,7 +67,7 @@ TEST_P(CoverageMaskEquivalence, OptimizedEqualsReference) {
             }
         }
         const std::size_t words = std::size_t(grid.nbx * grid.nby) * std::size_t(c.words);
-        std::vector<uint64_t> want(words, 0), got(words, 0);
+        std::vector<MaskWord> want(words, 0), got(words, 0);
         paint_coverage_masks_reference(grains.data(), grains.size(), layout, c, want.data());
         paint_coverage_masks_optimized(grains.data(), grains.size(), layout, c, got.data());
         ASSERT_EQ(got, want) << "iteration " << iter << " k " << k << " grains " << grains.size();
@@ -95,7 +95,7 @@ TEST(CoverageMasks, PaintedMasksEqualTheBinListsLookUp) {
         GrainField field;
         field.generate(intensity, law, k, 77, 2.3, 1.7, 15.2, 12.9, true);
         for (const bool reference : {true, false}) {
-            std::vector<uint64_t> masks;
+            std::vector<MaskWord> masks;
             GrainField painter;
             EXPECT_EQ(paint_tile_masks(painter, intensity, law, 77, 2.3, 1.7, 15.2, 12.9, c, reference, masks),
                       field.grains().size());
@@ -104,10 +104,10 @@ TEST(CoverageMasks, PaintedMasksEqualTheBinListsLookUp) {
             for (int64_t by = 0; by < field.bins_y(); by++)
                 for (int64_t bx = 0; bx < field.bins_x(); bx++) {
                     const uint32_t cls = layout.row_class[std::size_t(by)] + layout.col_class[std::size_t(bx)];
-                    const uint64_t* mask = masks.data() + std::size_t(by * field.bins_x() + bx) * std::size_t(c.words);
+                    const MaskWord* mask = masks.data() + std::size_t(by * field.bins_x() + bx) * std::size_t(c.words);
                     for (int w = 0; w < c.words; w++)
-                        for (int bit = 0; bit < 64; bit++) {
-                            const uint32_t j = uint32_t(w * 64 + bit);
+                        for (int bit = 0; bit < kMaskWordBits; bit++) {
+                            const uint32_t j = uint32_t(w * kMaskWordBits + bit);
                             const bool want =
                                 j < c.size[cls] && field.covered_in_bin(field.first_bin_x() + bx, field.first_bin_y() + by,
                                                                         c.lx[c.begin[cls] + j], c.ly[c.begin[cls] + j]);
@@ -131,9 +131,9 @@ TEST(SampleClasses, EverySampleHasOnePlaceInItsClass) {
             const uint32_t cls = c.sample_class[std::size_t(i)];
             const int64_t sx = pts.steps_x()[std::size_t(i)].bin, sy = pts.steps_y()[std::size_t(i)].bin;
             EXPECT_EQ(cls, uint32_t(((sy % k + k) % k) * k + (sx % k + k) % k));
-            const uint32_t j = c.sample_word[std::size_t(i)] * 64 + c.sample_bit[std::size_t(i)];
+            const uint32_t j = c.sample_word[std::size_t(i)] * kMaskWordBits + c.sample_bit[std::size_t(i)];
             ASSERT_LT(j, c.size[cls]);
-            ASSERT_LT(j, uint32_t(c.words) * 64);
+            ASSERT_LT(j, uint32_t(c.words) * kMaskWordBits);
             const std::size_t at = c.begin[cls] + j;
             seen[at]++;
             EXPECT_EQ(c.lx[at], pts.steps_x()[std::size_t(i)].local);
