@@ -1,7 +1,8 @@
 // The unit-zoom mask estimator's stages: the mask-painting kernel on every dispatch target
 // against its scalar reference, on random grains and points including points exactly on a
 // grain's edge; the painted masks against the bin lists; the grouping of samples into
-// classes; and a whole render with the vector kernels equal to one with the scalar kernels.
+// classes; a whole render with the vector kernels equal to one with the scalar kernels; and
+// renders that do not depend on the thread count, the tiling or the region.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -160,6 +161,29 @@ TEST(CoverageMaskRender, VectorAndScalarKernelsRenderTheSame) {
         render_boolean_model(u, p, {}, 4, ref);
         EXPECT_EQ(vec.v, ref.v) << radius;
     }
+}
+
+// The mask estimator's tiles (128 pixels at unit zoom) cut this plane into six, the last
+// ones partial, and a region cuts it elsewhere: the output must not see where.
+TEST(CoverageMaskRender, SameOutputForEveryThreadCountTilingAndRegion) {
+    FloatPlane u(260, 140);
+    for (int y = 0; y < u.height; y++)
+        for (int x = 0; x < u.width; x++) u.at(x, y) = float(0.5 + 0.45 * std::sin(x * 0.07) * std::cos(y * 0.11));
+    BooleanModelParams p;
+    p.radius_mean = 0.15;
+    p.samples = 32;
+    p.algorithm = BooleanAlgorithm::kPixelWise;
+    FloatPlane one, two, roi;
+    p.threads = 1;
+    render_boolean_model(u, p, {}, 7, one);
+    p.threads = 2;
+    render_boolean_model(u, p, {}, 7, two);
+    EXPECT_EQ(one.v, two.v);
+    const OutputRegion r{77, 33, 170, 100};
+    render_boolean_model(u, p, r, 7, roi);
+    ASSERT_EQ(roi.width, r.w);
+    for (int y = 0; y < r.h; y++)
+        for (int x = 0; x < r.w; x++) ASSERT_EQ(roi.at(x, y), one.at(r.x + x, r.y + y)) << x << "," << y;
 }
 
 }  // namespace
