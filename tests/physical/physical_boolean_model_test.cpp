@@ -11,6 +11,7 @@
 #include "physical/boolean_covariance.hpp"
 #include "physical/boolean_model.hpp"
 #include "physical/monte_carlo_offsets.hpp"
+#include "boolean_render_split.hpp"
 
 using namespace filmgrain;
 using namespace filmgrain::physical;
@@ -144,17 +145,7 @@ TEST(BooleanRenderer, SameOutputForEveryThreadCountTilingAndRegion) {
     p.radius_mean = 0.1;
     p.samples = 24;
     p.zoom = 1.5;  // tiles of 48 output pixels: several tiles, the last ones partial
-    FloatPlane one, two, roi;
-    p.threads = 1;
-    render_boolean_model(u, p, {}, 5, one);
-    p.threads = 2;
-    render_boolean_model(u, p, {}, 5, two);
-    EXPECT_EQ(one.v, two.v);
-    const OutputRegion r{37, 21, 50, 61};
-    render_boolean_model(u, p, r, 5, roi);
-    ASSERT_EQ(roi.width, r.w);
-    for (int y = 0; y < r.h; y++)
-        for (int x = 0; x < r.w; x++) ASSERT_EQ(roi.at(x, y), one.at(r.x + x, r.y + y)) << x << "," << y;
+    test_support::expect_render_independent_of_split(u, p, 5, {37, 21, 50, 61});
 }
 
 TEST(BooleanRenderer, ToleranceStopsEachPixelAtTheTargetError) {

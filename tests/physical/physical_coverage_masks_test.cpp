@@ -15,6 +15,7 @@
 #include "physical/coverage_masks.hpp"
 #include "physical/grain_field.hpp"
 #include "physical/monte_carlo_offsets.hpp"
+#include "boolean_render_split.hpp"
 #include "forced_simd_target.hpp"
 
 using namespace filmgrain;
@@ -173,17 +174,7 @@ TEST(CoverageMaskRender, SameOutputForEveryThreadCountTilingAndRegion) {
     p.radius_mean = 0.15;
     p.samples = 32;
     p.algorithm = BooleanAlgorithm::kPixelWise;
-    FloatPlane one, two, roi;
-    p.threads = 1;
-    render_boolean_model(u, p, {}, 7, one);
-    p.threads = 2;
-    render_boolean_model(u, p, {}, 7, two);
-    EXPECT_EQ(one.v, two.v);
-    const OutputRegion r{77, 33, 170, 100};
-    render_boolean_model(u, p, r, 7, roi);
-    ASSERT_EQ(roi.width, r.w);
-    for (int y = 0; y < r.h; y++)
-        for (int x = 0; x < r.w; x++) ASSERT_EQ(roi.at(x, y), one.at(r.x + x, r.y + y)) << x << "," << y;
+    test_support::expect_render_independent_of_split(u, p, 7, {77, 33, 170, 100});
 }
 
 }  // namespace
