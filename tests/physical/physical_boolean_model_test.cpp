@@ -138,9 +138,7 @@ TEST(BooleanRenderer, AutomaticChoiceFollowsGrainSize) {
 }
 
 TEST(BooleanRenderer, SameOutputForEveryThreadCountTilingAndRegion) {
-    FloatPlane u(80, 70);
-    for (int y = 0; y < u.height; y++)
-        for (int x = 0; x < u.width; x++) u.at(x, y) = float(0.5 + 0.45 * std::sin(x * 0.1) * std::cos(y * 0.13));
+    const FloatPlane u = test_support::wavy_plane(80, 70, 0.1, 0.13);
     BooleanModelParams p;
     p.radius_mean = 0.1;
     p.samples = 24;

@@ -167,9 +167,7 @@ TEST(CoverageMaskRender, VectorAndScalarKernelsRenderTheSame) {
 // The mask estimator's tiles (128 pixels at unit zoom) cut this plane into six, the last
 // ones partial, and a region cuts it elsewhere: the output must not see where.
 TEST(CoverageMaskRender, SameOutputForEveryThreadCountTilingAndRegion) {
-    FloatPlane u(260, 140);
-    for (int y = 0; y < u.height; y++)
-        for (int x = 0; x < u.width; x++) u.at(x, y) = float(0.5 + 0.45 * std::sin(x * 0.07) * std::cos(y * 0.11));
+    const FloatPlane u = test_support::wavy_plane(260, 140, 0.07, 0.11);
     BooleanModelParams p;
     p.radius_mean = 0.15;
     p.samples = 32;

@@ -4,11 +4,21 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 
 #include "physical/boolean_model.hpp"
 
 namespace filmgrain::test_support {
+
+// A smooth plane of grey levels 0.05..0.95 (a product of two sinusoids, fx and fy radians
+// per pixel): every grain density the split tests need, without black or white.
+inline FloatPlane wavy_plane(int w, int h, double fx, double fy) {
+    FloatPlane u(w, h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) u.at(x, y) = float(0.5 + 0.45 * std::sin(x * fx) * std::cos(y * fy));
+    return u;
+}
 
 inline void expect_render_independent_of_split(const FloatPlane& u, physical::BooleanModelParams p, uint64_t seed,
                                                const physical::OutputRegion& region) {
