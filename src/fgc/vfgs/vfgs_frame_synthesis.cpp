@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include "core/thread_pool.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
@@ -46,6 +47,14 @@ const int8_t* pool_base(const SynthesisSetup& st, int c) {
     return c ? &st.bank->chroma[0][0][0] : &st.bank->luma[0][0][0];
 }
 
+BlendRowJob blend_job(const FrameJob& f, int plane_width) {
+    BlendRowJob blend;
+    blend.width = plane_width;
+    blend.shift = f.setup.scale_shift;
+    blend.bit_depth = f.src.bit_depth;
+    return blend;
+}
+
 // Row `py` of plane `c`; `j` is the luma row inside the block stripe.
 template <typename In, typename Out>
 void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, const GrainBlock* blocks,
@@ -74,6 +83,11 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
         job.overlap_c2 = c2;
         job.intensity_shift = f.src.bit_depth - 8;
         job.pattern_interpolation = f.setup.pattern_interpolation;
+        if constexpr (std::is_same_v<In, uint8_t> && std::is_same_v<Out, uint8_t>) {
+            if (vec && job.block_count == f.blocks &&
+                simd::grain_blend_row_u8(job, blend_job(f, pw), in, f.dst.planes[c].template row<Out>(py)))
+                return;
+        }
         grain_row(vec, job, in, grain, scale);
         if (job.block_count < f.blocks) {
             // A last block that sticks out of the row. There the reference reads its
@@ -99,11 +113,7 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
         std::fill(s.grain.begin(), s.grain.end(), int16_t{0});
         std::fill(s.scale.begin(), s.scale.end(), int16_t{0});
     }
-    BlendRowJob blend;
-    blend.width = pw;
-    blend.shift = f.setup.scale_shift;
-    blend.bit_depth = f.src.bit_depth;
-    blend_row(vec, blend, in, grain, scale, f.dst.planes[c].template row<Out>(py));
+    blend_row(vec, blend_job(f, pw), in, grain, scale, f.dst.planes[c].template row<Out>(py));
 }
 
 template <typename In, typename Out>

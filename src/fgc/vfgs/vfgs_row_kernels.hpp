@@ -11,6 +11,9 @@
 //     4:2:0 chroma overlap).
 //  2. blend_row: the scaling and the additive blend with VFGS's clip, optionally
 //     rounded to 8 bits.
+//
+// At 8 bits the Highway side also has both in one pass (grain_blend_row_u8), whose
+// reference is the two scalar kernels run one after the other.
 #pragma once
 #include <cstdint>
 
@@ -77,6 +80,11 @@ void blend_row_u16(const BlendRowJob& job, const uint16_t* in, const int16_t* gr
                    uint16_t* out);
 void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                          uint8_t* out);
+// grain_row_u8 then blend_row_u8 over the same row, in one pass with no grain in memory,
+// where the target and the row allow (256-bit vectors; a row of whole blocks, 16 samples
+// a multiple; 8 bits with a shift of 8..15). Returns false, having written nothing, where
+// they do not: then the caller runs the two kernels.
+bool grain_blend_row_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out);
 }  // namespace simd
 
 }  // namespace filmgrain::vfgs

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/simd_targets.hpp"
+#include "hwy/targets.h"
 #include "fgc/vfgs/vfgs_intensity_runs.hpp"
 #include "fgc/vfgs/vfgs_row_kernels.hpp"
 #include "forced_simd_target.hpp"
@@ -41,6 +42,40 @@ ComponentLuts random_luts(std::mt19937& rng, int runs) {
     return lut;
 }
 
+// A row job of `block_count` blocks of either width, with any overlap weights, reading
+// random template rows of `pool`; its blocks come from random_blocks().
+GrainRowJob random_grain_job(std::mt19937& rng, const std::vector<int8_t>& pool, const ComponentLuts& lut,
+                             const IntensityRuns& runs, int block_count) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    GrainRowJob job;
+    job.block_width = uniform(0, 1) ? 16 : 8;
+    job.block_count = block_count;
+    const int weights[4][2] = {{0, 0}, {12, 24}, {24, 12}, {20, 20}};
+    const int w = uniform(0, 3);
+    job.overlap_c1 = weights[w][0];
+    job.overlap_c2 = weights[w][1];
+    job.pool = pool.data() + uniform(0, 63) * kTemplatePitch;
+    job.pool_up = pool.data() + uniform(0, 63) * kTemplatePitch;
+    job.luts = &lut;
+    job.runs = &runs;
+    return job;
+}
+
+// Template places anywhere below the job's rows in `pool`, and random signs.
+std::vector<GrainBlock> random_blocks(std::mt19937& rng, const std::vector<int8_t>& pool, const GrainRowJob& job) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    const int row = static_cast<int>((job.pool - pool.data()) / kTemplatePitch);
+    const int row_up = static_cast<int>((job.pool_up - pool.data()) / kTemplatePitch);
+    std::vector<GrainBlock> blocks(static_cast<size_t>(job.block_count));
+    for (auto& b : blocks) {
+        b.offset = uniform(0, 63 - row) * kTemplatePitch + uniform(0, kTemplatePitch - job.block_width);
+        b.offset_up = uniform(0, 63 - row_up) * kTemplatePitch + uniform(0, kTemplatePitch - job.block_width);
+        b.sign = uniform(0, 1) ? 1 : -1;
+        b.sign_up = uniform(0, 1) ? 1 : -1;
+    }
+    return blocks;
+}
+
 template <typename In>
 void check_grain_rows(std::mt19937& rng, int iterations) {
     auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
@@ -50,26 +85,9 @@ void check_grain_rows(std::mt19937& rng, int iterations) {
         const ComponentLuts lut = random_luts(rng, uniform(0, 1) ? uniform(1, 5) : uniform(6, kMaxVectorRuns));
         const IntensityRuns runs = intensity_runs(lut);
         ASSERT_LE(runs.count, kMaxVectorRuns);
-        GrainRowJob job;
-        job.block_width = uniform(0, 1) ? 16 : 8;
-        job.block_count = uniform(1, 30);
-        const int weights[4][2] = {{0, 0}, {12, 24}, {24, 12}, {20, 20}};
-        const int w = uniform(0, 3);
-        job.overlap_c1 = weights[w][0];
-        job.overlap_c2 = weights[w][1];
-        const int row = uniform(0, 63), row_up = uniform(0, 63);
-        job.pool = pool.data() + row * kTemplatePitch;
-        job.pool_up = pool.data() + row_up * kTemplatePitch;
-        job.luts = &lut;
-        job.runs = &runs;
+        GrainRowJob job = random_grain_job(rng, pool, lut, runs, uniform(1, 30));
         job.intensity_shift = sizeof(In) == 1 ? 0 : 2;
-        std::vector<GrainBlock> blocks(static_cast<size_t>(job.block_count));
-        for (auto& b : blocks) {
-            b.offset = uniform(0, 63 - row) * kTemplatePitch + uniform(0, kTemplatePitch - job.block_width);
-            b.offset_up = uniform(0, 63 - row_up) * kTemplatePitch + uniform(0, kTemplatePitch - job.block_width);
-            b.sign = uniform(0, 1) ? 1 : -1;
-            b.sign_up = uniform(0, 1) ? 1 : -1;
-        }
+        std::vector<GrainBlock> blocks = random_blocks(rng, pool, job);
         job.blocks = blocks.data();
         const size_t n = static_cast<size_t>(job.block_count * job.block_width);
         std::vector<In> in(n);
@@ -90,6 +108,53 @@ void check_grain_rows(std::mt19937& rng, int iterations) {
 }
 
 TEST_P(VfgsSimdEquivalence, GrainRow8Bit) { check_grain_rows<uint8_t>(rng, 600); }
+
+// grain_blend_row_u8 against scalar::grain_row_u8 then scalar::blend_row_u8. It runs on
+// every 256-bit target and row of whole vectors (and must run there: the count of fused
+// rows is checked), and leaves the output alone where it declines.
+TEST_P(VfgsSimdEquivalence, GrainBlendRow8Bit) {
+    std::vector<int8_t> pool(static_cast<size_t>(kTemplateBytes) * kMaxTemplates);
+    const bool fusing_target = GetParam().bits <= HWY_AVX2;
+    int fused = 0, eligible = 0;
+    for (int iter = 0; iter < 1500; ++iter) {
+        for (auto& v : pool) v = static_cast<int8_t>(uniform(0, 9) == 0 ? (uniform(0, 1) ? 127 : -127) : uniform(-127, 127));
+        const ComponentLuts lut = random_luts(rng, uniform(0, 1) ? uniform(1, 5) : uniform(6, kMaxVectorRuns));
+        const IntensityRuns runs = intensity_runs(lut);
+        GrainRowJob job = random_grain_job(rng, pool, lut, runs, uniform(0, 3) ? 2 * uniform(1, 15) : uniform(1, 30));
+        std::vector<GrainBlock> blocks = random_blocks(rng, pool, job);
+        job.blocks = blocks.data();
+        BlendRowJob blend;
+        blend.width = job.block_count * job.block_width;
+        blend.bit_depth = 8;
+        blend.shift = uniform(0, 9) == 0 ? uniform(14, 15) : uniform(8, 13);
+        const size_t n = static_cast<size_t>(blend.width);
+        std::vector<uint8_t> in(n);
+        for (auto& v : in) v = static_cast<uint8_t>(uniform(0, 3) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
+        std::vector<int16_t> grain(n), scale(n);
+        std::vector<uint8_t> want(n + 1, 0xA5), got(want);
+        vfgs::scalar::grain_row_u8(job, in.data(), grain.data(), scale.data());
+        vfgs::scalar::blend_row_u8(blend, in.data(), grain.data(), scale.data(), want.data());
+        const bool whole_vectors = n % 16 == 0;
+        eligible += whole_vectors;
+        const std::string what = "iteration " + std::to_string(iter) + " blocks " + std::to_string(job.block_count) + "x" +
+                                 std::to_string(job.block_width) + " runs " + std::to_string(runs.count) + " overlap " +
+                                 std::to_string(job.overlap_c1) + " shift " + std::to_string(blend.shift);
+        if (!vfgs::simd::grain_blend_row_u8(job, blend, in.data(), got.data())) {
+            ASSERT_FALSE(fusing_target && whole_vectors) << what;
+            ASSERT_EQ(got, std::vector<uint8_t>(n + 1, 0xA5)) << what;
+            continue;
+        }
+        ++fused;
+        ASSERT_EQ(got, want) << what;
+        std::vector<uint8_t> inplace(in);  // out == in
+        ASSERT_TRUE(vfgs::simd::grain_blend_row_u8(job, blend, inplace.data(), inplace.data()));
+        inplace.push_back(0xA5);
+        ASSERT_EQ(inplace, want) << what;
+    }
+    if (fusing_target) EXPECT_EQ(fused, eligible);
+    else EXPECT_EQ(fused, 0);
+    EXPECT_GT(eligible, 1000);
+}
 TEST_P(VfgsSimdEquivalence, GrainRow10Bit) { check_grain_rows<uint16_t>(rng, 600); }
 
 // kind 0: u8 -> u8, 1: u16 -> u16, 2: u16 -> u8 (--outdepth 8)

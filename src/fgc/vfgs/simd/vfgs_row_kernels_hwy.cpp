@@ -34,6 +34,51 @@ struct RunStep {
     bool new_tmpl = false, new_scale = false;  // what changes at this boundary
 };
 
+// The run steps of `runs` in the form the vector loops read, kept in the caller's locals
+// (registers across the blocks: the vector stores cannot reach them). Returns the count.
+HWY_INLINE int RunSteps(const IntensityRuns& runs, int known_count, RunStep* steps) {
+    const int count = known_count ? known_count : runs.count;
+    for (int r = 0; r < count; ++r) {
+        const IntensityRun& run = runs.run[r];
+        steps[r].last_below = static_cast<int16_t>(run.start - 1);
+        steps[r].tmpl_offset = run.tmpl * kTemplateBytes;
+        steps[r].scale = static_cast<int16_t>(run.scale);
+        steps[r].new_tmpl = r > 0 && run.tmpl != runs.run[r - 1].tmpl;
+        steps[r].new_scale = r > 0 && run.scale != runs.run[r - 1].scale;
+    }
+    return count;
+}
+
+// The reference's two look-ups (template and scale) for each lane, as the last run
+// starting at or below the lane's intensity. load(t) / load_up(t): the template rows of the
+// block and of the block above at template offset t, as int16 lanes.
+template <bool kOverlap, class D, class Load, class LoadUp>
+HWY_INLINE void PickRuns(D d, const RunStep* steps, int count, hn::Vec<D> inten, const Load& load,
+                         const LoadUp& load_up, hn::Vec<D>& g, hn::Vec<D>& gu, hn::Vec<D>& sc) {
+    g = load(steps[0].tmpl_offset);
+    gu = kOverlap ? load_up(steps[0].tmpl_offset) : hn::Zero(d);
+    sc = hn::Set(d, steps[0].scale);
+    for (int r = 1; r < count; ++r) {
+        const RunStep& st = steps[r];
+        // all ones where inten >= run start: a vector, not a mask register,
+        // because GCC 12 fails on AVX-512 16-bit mask blends here ("could not split insn")
+        const auto m = hn::ShiftRight<15>(hn::Sub(hn::Set(d, st.last_below), inten));
+        if (st.new_tmpl) {
+            g = hn::IfVecThenElse(m, load(st.tmpl_offset), g);
+            if (kOverlap) gu = hn::IfVecThenElse(m, load_up(st.tmpl_offset), gu);
+        }
+        if (st.new_scale) sc = hn::IfVecThenElse(m, hn::Set(d, st.scale), sc);
+    }
+}
+
+// The picked template samples with their block's sign, and on the overlap rows
+// overlap_blend(g * sign, gu * sign_up, c1, c2) with the signs folded into the weights.
+template <bool kOverlap, class V>
+HWY_INLINE V SignedGrain(V g, V gu, V sign, V sign_up, V round) {
+    return kOverlap ? hn::ShiftRight<5>(hn::Add(hn::Add(hn::Mul(g, sign), hn::Mul(gu, sign_up)), round))
+                    : hn::Mul(g, sign);
+}
+
 // The grain of `block_count` blocks of one row. Lanes hold int16: the template samples
 // (|t| <= 127) times the overlap weights (<= 24) sum to at most 6112 in magnitude.
 // D has block_width lanes or a divisor of it (a narrower target runs a block in parts).
@@ -43,18 +88,8 @@ HWY_NOINLINE void GrainBlocks(D d, const GrainRowJob& job, const In* in, int16_t
     const hn::Rebind<int8_t, D> d8;
     const int n = static_cast<int>(hn::Lanes(d));
     const IntensityRuns& runs = *job.runs;
-    const int count = kRuns ? kRuns : runs.count;
-    // Local copies: the compiler keeps them in registers across the blocks (the grain
-    // stores cannot reach them).
     RunStep steps[kMaxVectorRuns];
-    for (int r = 0; r < count; ++r) {
-        const IntensityRun& run = runs.run[r];
-        steps[r].last_below = static_cast<int16_t>(run.start - 1);
-        steps[r].tmpl_offset = run.tmpl * kTemplateBytes;
-        steps[r].scale = static_cast<int16_t>(run.scale);
-        steps[r].new_tmpl = r > 0 && run.tmpl != runs.run[r - 1].tmpl;
-        steps[r].new_scale = r > 0 && run.scale != runs.run[r - 1].scale;
-    }
+    const int count = RunSteps(runs, kRuns, steps);
     // The job's fields in locals: the vector stores may alias anything, and would make
     // the compiler reload them for every block.
     const int8_t* const pool = job.pool;
@@ -71,32 +106,16 @@ HWY_NOINLINE void GrainBlocks(D d, const GrainRowJob& job, const In* in, int16_t
         const auto sign_up = hn::Set(d, static_cast<int16_t>(blk.sign_up * c2));
         for (int i = 0; i < block_width; i += n) {
             const int x = b * block_width + i;
-            // The reference's two look-ups, as the last run starting at or below the intensity.
-            auto g = hn::PromoteTo(d, hn::LoadU(d8, cur + steps[0].tmpl_offset + i));
-            auto gu = kOverlap ? hn::PromoteTo(d, hn::LoadU(d8, up + steps[0].tmpl_offset + i)) : hn::Zero(d);
-            auto sc = hn::Set(d, steps[0].scale);
-            if (count > 1) {
-                const auto inten = Intensity(d, in + x, intensity_shift);
-                for (int r = 1; r < count; ++r) {
-                    const RunStep& st = steps[r];
-                    // all ones where inten >= run start: a vector, not a mask register,
-                    // because GCC 12 fails on AVX-512 16-bit mask blends here ("could not split insn")
-                    const auto m = hn::ShiftRight<15>(hn::Sub(hn::Set(d, st.last_below), inten));
-                    if (st.new_tmpl) {
-                        g = hn::IfVecThenElse(m, hn::PromoteTo(d, hn::LoadU(d8, cur + st.tmpl_offset + i)), g);
-                        if (kOverlap) gu = hn::IfVecThenElse(m, hn::PromoteTo(d, hn::LoadU(d8, up + st.tmpl_offset + i)), gu);
-                    }
-                    if (st.new_scale) sc = hn::IfVecThenElse(m, hn::Set(d, st.scale), sc);
-                }
-            }
-            // overlap_blend(g * sign, gu * sign_up, c1, c2) with the signs folded into the weights
-            const auto p = kOverlap ? hn::ShiftRight<5>(hn::Add(hn::Add(hn::Mul(g, sign), hn::Mul(gu, sign_up)), round))
-                                    : hn::Mul(g, sign);
-            hn::StoreU(p, d, grain + x);
+            const auto inten = count > 1 ? Intensity(d, in + x, intensity_shift) : hn::Zero(d);
+            hn::Vec<D> g, gu, sc;
+            PickRuns<kOverlap>(
+                d, steps, count, inten, [&](int32_t t) { return hn::PromoteTo(d, hn::LoadU(d8, cur + t + i)); },
+                [&](int32_t t) { return hn::PromoteTo(d, hn::LoadU(d8, up + t + i)); }, g, gu, sc);
+            hn::StoreU(SignedGrain<kOverlap>(g, gu, sign, sign_up, round), d, grain + x);
             hn::StoreU(sc, d, scale + x);
         }
     }
-// deblock_edge() at every inner block edge: [1 3 1] / 4 on the last sample before the
+    // deblock_edge() at every inner block edge: [1 3 1] / 4 on the last sample before the
     // edge and the first after it, from unfiltered values (edges are >= 8 samples apart).
     for (int b = 1; b < block_count; ++b) {
         int16_t* e = grain + b * block_width;
@@ -167,12 +186,24 @@ HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* gr
     }
 }
 
+// scale_grain() in int16 lanes, for shifts of 8..15: from a shift of 8 on the scaled value
+// of any int16 grain (255 * 32768 >> 8) fits int16. The product's two halves (pmullw,
+// pmulhw), with the rounding's carry into the high one, give the int32 product's shift
+// exactly. round: 1 << (shift - 1) in every lane.
+template <class D, class DU = hn::RebindToUnsigned<D>>
+HWY_INLINE hn::Vec<D> ScaledGrainInt16(D d, hn::Vec<D> g, hn::Vec<D> sc, int shift, hn::Vec<DU> round) {
+    const DU du;
+    const auto low = hn::Add(hn::BitCast(du, hn::Mul(sc, g)), round);
+    // all ones (-1) where the low half wrapped: the carry, subtracted
+    const auto carry = hn::BitCast(d, hn::VecFromMask(du, hn::Lt(low, round)));
+    const auto high = hn::Sub(hn::MulHigh(sc, g), carry);
+    return hn::Or(hn::BitCast(d, hn::ShiftRightSame(low, shift)), hn::ShiftLeftSame(high, 16 - shift));
+}
+
 // 8 bits in int16 lanes, twice as many per vector: there scale_shift() is 8..13
-// (log2_scale_factor - model_id is 2..7), and from a shift of 8 on the scaled value of any
-// int16 grain (255 * 32768 >> 8) fits int16. The product's two halves (pmullw, pmulhw),
-// with the rounding's carry into the high one, give the int32 product's shift exactly; the
-// sum with the sample saturates where the 0..255 clip would cut it anyway. Returns where the
-// remaining samples start.
+// (log2_scale_factor - model_id is 2..7; ScaledGrainInt16). The sum with the sample
+// saturates where the 0..255 clip would cut it anyway. Returns where the remaining samples
+// start.
 HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale,
                                uint8_t* out) {
     const hn::ScalableTag<int16_t> d;
@@ -183,14 +214,8 @@ HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const 
     const auto round = hn::Set(du, static_cast<uint16_t>(1u << (shift - 1)));
     int x = 0;
     for (; x + n <= job.width; x += n) {
-        const auto g = hn::LoadU(d, grain + x);
-        const auto sc = hn::LoadU(d, scale + x);
-        const auto low = hn::Add(hn::BitCast(du, hn::Mul(sc, g)), round);
-        // all ones (-1) where the low half wrapped: the carry, subtracted
-        const auto carry = hn::BitCast(d, hn::VecFromMask(du, hn::Lt(low, round)));
-        const auto high = hn::Sub(hn::MulHigh(sc, g), carry);
-        const auto scaled = hn::Or(hn::BitCast(d, hn::ShiftRightSame(low, shift)), hn::ShiftLeftSame(high, 16 - shift));
         const auto sample = hn::BitCast(d, hn::PromoteTo(du, hn::LoadU(d8, in + x)));
+        const auto scaled = ScaledGrainInt16(d, hn::LoadU(d, grain + x), hn::LoadU(d, scale + x), shift, round);
         hn::StoreU(hn::DemoteTo(d8, hn::SaturatedAdd(sample, scaled)), d8, out + x);
     }
     return x;
@@ -211,6 +236,142 @@ void BlendRowU16ToU8(const BlendRowJob& job, const uint16_t* in, const int16_t* 
     BlendRow<true>(job, in, grain, scale, out);
 }
 
+// grain_row_u8 and blend_row_u8 in one pass over 8-bit rows, with no grain or scale
+// written to memory: on a Zen 3 the two-pass form spent a third of its time storing the
+// row's grain and scales and reading them back, and its scalar edge loop. The grain of a
+// 256-bit vector (one 16-wide block or two 8-wide ones) is scaled and blended once the
+// vector after it is known, since the deblocking of an edge reads two samples either
+// side (deblock_edge(), from unfiltered values). Needs whole 256-bit vectors of int16,
+// a row of whole vectors and blocks (width = block_count * block_width), and a shift
+// ScaledGrainInt16 takes.
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
+#define FILMGRAIN_VFGS_FUSED_ROW 1
+
+// The unfiltered grain of a vector's blocks (one 16-wide block or two 8-wide ones), its
+// scales and its samples.
+struct FusedVector {
+    hn::Vec<hn::Full256<int16_t>> grain, scale, sample;
+};
+
+template <bool kOverlap, int kRuns, int kBlockWidth>
+HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in,
+                                     uint8_t* out) {
+    const hn::Full256<int16_t> d;
+    const hn::Half<decltype(d)> dh;
+    const hn::RebindToUnsigned<decltype(d)> du;
+    const hn::Full128<int8_t> d8;
+    const hn::Full64<int8_t> d8h;
+    const hn::Full128<uint8_t> du8;
+    constexpr int kLanes = 16;
+    RunStep steps[kMaxVectorRuns];
+    const int count = RunSteps(*job.runs, kRuns, steps);
+    const int8_t* const pool = job.pool;
+    const int8_t* const pool_up = job.pool_up;
+    const GrainBlock* const blocks = job.blocks;
+    const int16_t c1 = static_cast<int16_t>(job.overlap_c1), c2 = static_cast<int16_t>(job.overlap_c2);
+    const int vectors = job.block_count * kBlockWidth / kLanes;
+    const int shift = blend.shift;
+    const auto round = hn::Set(d, int16_t{16});
+    const auto blend_round = hn::Set(du, static_cast<uint16_t>(1u << (shift - 1)));
+
+    // Template rows of the vector's blocks at template offset t: for two 8-wide blocks,
+    // each from its own place.
+    const auto rows = [&](const int8_t* base, int32_t off0, int32_t off1, int32_t t) {
+        if constexpr (kBlockWidth == 16) return hn::PromoteTo(d, hn::LoadU(d8, base + off0 + t));
+        else return hn::PromoteTo(d, hn::Combine(d8, hn::LoadU(d8h, base + off1 + t), hn::LoadU(d8h, base + off0 + t)));
+    };
+    const auto per_block = [&](int16_t w0, int16_t w1) {
+        if constexpr (kBlockWidth == 16) return hn::Set(d, w0);
+        else return hn::Combine(d, hn::Set(dh, w1), hn::Set(dh, w0));
+    };
+    const auto load_vector = [&](int v) {
+        const GrainBlock& b0 = blocks[v * kLanes / kBlockWidth];
+        const GrainBlock& b1 = kBlockWidth == 16 ? b0 : blocks[v * kLanes / kBlockWidth + 1];
+        FusedVector r;
+        r.sample = hn::BitCast(d, hn::PromoteTo(du, hn::LoadU(du8, in + v * kLanes)));
+        hn::Vec<decltype(d)> g, gu;
+        PickRuns<kOverlap>(
+            d, steps, count, r.sample, [&](int32_t t) { return rows(pool, b0.offset, b1.offset, t); },
+            [&](int32_t t) { return rows(pool_up, b0.offset_up, b1.offset_up, t); }, g, gu, r.scale);
+        const int16_t s0 = static_cast<int16_t>(b0.sign), s1 = static_cast<int16_t>(b1.sign);
+        const auto sign = kOverlap ? per_block(static_cast<int16_t>(s0 * c1), static_cast<int16_t>(s1 * c1))
+                                   : per_block(s0, s1);
+        const auto sign_up = kOverlap ? per_block(static_cast<int16_t>(b0.sign_up * c2),
+                                                  static_cast<int16_t>(b1.sign_up * c2))
+                                      : hn::Zero(d);
+        r.grain = SignedGrain<kOverlap>(g, gu, sign, sign_up, round);
+        return r;
+    };
+
+    // Lanes next to a block edge (deblock_edge() changes them), except the row's first and
+    // last sample, which have no edge.
+    const auto lane = hn::Iota(d, 0);
+    const auto in_block = hn::And(lane, hn::Set(d, int16_t{kBlockWidth - 1}));
+    const auto edge = hn::VecFromMask(d, hn::Or(hn::Eq(in_block, hn::Zero(d)),
+                                                hn::Eq(in_block, hn::Set(d, int16_t{kBlockWidth - 1}))));
+    const auto first_lane = hn::VecFromMask(d, hn::Eq(lane, hn::Zero(d)));
+    const auto last_lane = hn::VecFromMask(d, hn::Eq(lane, hn::Set(d, int16_t{kLanes - 1})));
+    const auto two = hn::Set(d, int16_t{2});
+
+    // Deblocks, scales and blends vector v. before: [grain of v-1's upper half, v's lower
+    // half]; after: [v's upper half, v+1's lower half].
+    const auto finish = [&](int v, const FusedVector& c, hn::Vec<decltype(d)> before,
+                            hn::Vec<decltype(d)> after) {
+        const auto left = hn::CombineShiftRightBytes<14>(d, c.grain, before);  // each lane's left neighbour
+        const auto right = hn::CombineShiftRightBytes<2>(d, after, c.grain);   // and its right one
+        const auto filtered =
+            hn::ShiftRight<2>(hn::Add(hn::Add(left, right), hn::Add(hn::Add(c.grain, c.grain), hn::Add(c.grain, two))));
+        auto mask = edge;
+        if (v == 0) mask = hn::AndNot(first_lane, mask);
+        if (v == vectors - 1) mask = hn::AndNot(last_lane, mask);
+        const auto g = hn::IfVecThenElse(mask, filtered, c.grain);
+        const auto scaled = ScaledGrainInt16(d, g, c.scale, shift, blend_round);
+        hn::StoreU(hn::DemoteTo(du8, hn::SaturatedAdd(c.sample, scaled)), du8, out + v * kLanes);
+    };
+
+    // Each vector is finished once the next one is loaded, which also makes out == in safe.
+    auto cur = load_vector(0);
+    auto before = hn::ConcatLowerUpper(d, cur.grain, hn::Zero(d));
+    for (int v = 1; v < vectors; ++v) {
+        const auto next = load_vector(v);
+        const auto after = hn::ConcatLowerUpper(d, next.grain, cur.grain);
+        finish(v - 1, cur, before, after);
+        before = after;
+        cur = next;
+    }
+    finish(vectors - 1, cur, before, hn::ConcatLowerUpper(d, hn::Zero(d), cur.grain));
+}
+
+template <bool kOverlap, int kBlockWidth>
+HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+    switch (job.runs->count) {
+        case 1: return GrainBlendBlocksU8<kOverlap, 1, kBlockWidth>(job, blend, in, out);
+        case 2: return GrainBlendBlocksU8<kOverlap, 2, kBlockWidth>(job, blend, in, out);
+        case 3: return GrainBlendBlocksU8<kOverlap, 3, kBlockWidth>(job, blend, in, out);
+        case 4: return GrainBlendBlocksU8<kOverlap, 4, kBlockWidth>(job, blend, in, out);
+        default: return GrainBlendBlocksU8<kOverlap, 0, kBlockWidth>(job, blend, in, out);
+    }
+}
+#endif
+
+bool GrainBlendRowU8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+#ifdef FILMGRAIN_VFGS_FUSED_ROW
+    const int width = job.block_count * job.block_width;
+    if (blend.bit_depth != 8 || blend.shift < 8 || blend.shift > 15 || job.intensity_shift != 0 ||
+        (job.block_width != 16 && job.block_width != 8) || width != blend.width || width == 0 || width % 16 != 0)
+        return false;
+    const bool overlap = job.overlap_c1 != 0;
+    if (job.block_width == 16) overlap ? GrainBlendForRuns<true, 16>(job, blend, in, out)
+                                       : GrainBlendForRuns<false, 16>(job, blend, in, out);
+    else overlap ? GrainBlendForRuns<true, 8>(job, blend, in, out) : GrainBlendForRuns<false, 8>(job, blend, in, out);
+    return true;
+#else
+    (void)job, (void)blend, (void)in, (void)out;
+    return false;
+#endif
+}
+#undef FILMGRAIN_VFGS_FUSED_ROW
+
 }  // namespace HWY_NAMESPACE
 }  // namespace filmgrain::vfgs::simd
 HWY_AFTER_NAMESPACE();
@@ -223,6 +384,7 @@ HWY_EXPORT(GrainRowU16);
 HWY_EXPORT(BlendRowU8);
 HWY_EXPORT(BlendRowU16);
 HWY_EXPORT(BlendRowU16ToU8);
+HWY_EXPORT(GrainBlendRowU8);
 
 void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale) {
     HWY_DYNAMIC_DISPATCH(GrainRowU8)(job, in, grain, scale);
@@ -240,6 +402,10 @@ void blend_row_u16(const BlendRowJob& job, const uint16_t* in, const int16_t* gr
 void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                          uint8_t* out) {
     HWY_DYNAMIC_DISPATCH(BlendRowU16ToU8)(job, in, grain, scale, out);
+}
+
+bool grain_blend_row_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+    return HWY_DYNAMIC_DISPATCH(GrainBlendRowU8)(job, blend, in, out);
 }
 
 }  // namespace filmgrain::vfgs::simd
