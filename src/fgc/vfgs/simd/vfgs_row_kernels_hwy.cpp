@@ -186,18 +186,13 @@ HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* gr
     }
 }
 
-// scale_grain() in int16 lanes, for shifts of 8..15: from a shift of 8 on the scaled value
-// of any int16 grain (255 * 32768 >> 8) fits int16. The product's two halves (pmullw,
-// pmulhw), with the rounding's carry into the high one, give the int32 product's shift
-// exactly. round: 1 << (shift - 1) in every lane.
-template <class D, class DU = hn::RebindToUnsigned<D>>
-HWY_INLINE hn::Vec<D> ScaledGrainInt16(D d, hn::Vec<D> g, hn::Vec<D> sc, int shift, hn::Vec<DU> round) {
-    const DU du;
-    const auto low = hn::Add(hn::BitCast(du, hn::Mul(sc, g)), round);
-    // all ones (-1) where the low half wrapped: the carry, subtracted
-    const auto carry = hn::BitCast(d, hn::VecFromMask(du, hn::Lt(low, round)));
-    const auto high = hn::Sub(hn::MulHigh(sc, g), carry);
-    return hn::Or(hn::BitCast(d, hn::ShiftRightSame(low, shift)), hn::ShiftLeftSame(high, 16 - shift));
+// scale_grain() in int16 lanes, for shifts of 8..15: one rounding high multiply
+// (pmulhrsw) with the scale moved up to q15, (sc << (15 - shift)) * g + 2^14 >> 15, which is
+// (sc * g + 2^(shift - 1)) >> shift exactly: the scale (<= 255) shifted by at most 7 still
+// fits int16, and the product is formed in 32 bits.
+template <class D>
+HWY_INLINE hn::Vec<D> ScaledGrainInt16(D /*d*/, hn::Vec<D> g, hn::Vec<D> sc, int shift) {
+    return hn::MulFixedPoint15(hn::ShiftLeftSame(sc, 15 - shift), g);
 }
 
 // 8 bits in int16 lanes, twice as many per vector: there scale_shift() is 8..13
@@ -211,11 +206,10 @@ HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const 
     const hn::Rebind<uint8_t, decltype(d)> d8;
     const int n = static_cast<int>(hn::Lanes(d));
     const int shift = job.shift;
-    const auto round = hn::Set(du, static_cast<uint16_t>(1u << (shift - 1)));
     int x = 0;
     for (; x + n <= job.width; x += n) {
         const auto sample = hn::BitCast(d, hn::PromoteTo(du, hn::LoadU(d8, in + x)));
-        const auto scaled = ScaledGrainInt16(d, hn::LoadU(d, grain + x), hn::LoadU(d, scale + x), shift, round);
+        const auto scaled = ScaledGrainInt16(d, hn::LoadU(d, grain + x), hn::LoadU(d, scale + x), shift);
         hn::StoreU(hn::DemoteTo(d8, hn::SaturatedAdd(sample, scaled)), d8, out + x);
     }
     return x;
@@ -272,7 +266,6 @@ HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& 
     const int vectors = job.block_count * kBlockWidth / kLanes;
     const int shift = blend.shift;
     const auto round = hn::Set(d, int16_t{16});
-    const auto blend_round = hn::Set(du, static_cast<uint16_t>(1u << (shift - 1)));
 
     // Template rows of the vector's blocks at template offset t: for two 8-wide blocks,
     // each from its own place.
@@ -325,7 +318,7 @@ HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& 
         if (v == 0) mask = hn::AndNot(first_lane, mask);
         if (v == vectors - 1) mask = hn::AndNot(last_lane, mask);
         const auto g = hn::IfVecThenElse(mask, filtered, c.grain);
-        const auto scaled = ScaledGrainInt16(d, g, c.scale, shift, blend_round);
+        const auto scaled = ScaledGrainInt16(d, g, c.scale, shift);
         hn::StoreU(hn::DemoteTo(du8, hn::SaturatedAdd(c.sample, scaled)), du8, out + v * kLanes);
     };
 
