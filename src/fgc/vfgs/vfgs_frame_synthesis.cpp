@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "core/thread_pool.hpp"
+#include "fgc/vfgs/vfgs_block_grains.hpp"
 #include "fgc/vfgs/vfgs_random.hpp"
 #include "fgc/vfgs/vfgs_stripe_states.hpp"
 
@@ -23,6 +24,7 @@ struct FrameJob {
     const SynthesisSetup& setup;
     std::array<bool, 3> vector_kernels{};
     int blocks = 0;  // per stripe
+    bool vector_block_grains = false;
 };
 
 void grain_row(bool vec, const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale) {
@@ -126,20 +128,15 @@ void synthesize_stripe(const FrameJob& f, int k, uint32_t first_state, uint32_t 
     if (!first_stripe) fill_block_states(first_state_up, nb, s.states_up.data());
     for (int c = 0; c < planes; ++c) {
         if (!f.setup.has_grain[static_cast<size_t>(c)]) continue;
-        const int subx = c ? (1 << chroma_shift_x(f.src.format)) : 1;
-        const int suby = c ? (1 << chroma_shift_y(f.src.format)) : 1;
+        BlockGrainsJob job;
+        job.component = c;
+        job.subx = c ? (1 << chroma_shift_x(f.src.format)) : 1;
+        job.suby = c ? (1 << chroma_shift_y(f.src.format)) : 1;
+        job.states = s.states_cur.data();
+        job.states_up = first_stripe ? s.states_cur.data() : s.states_up.data();  // no block above: unused
+        job.count = nb;
         GrainBlock* blocks = s.blocks.data() + static_cast<size_t>(c) * static_cast<size_t>(nb);
-        for (int b = 0; b < nb; ++b) {
-            const BlockOffset o = block_offset(c, s.states_cur[static_cast<size_t>(b)], subx, suby);
-            GrainBlock& g = blocks[b];
-            g.offset = o.oy * kTemplatePitch + o.ox;
-            g.sign = o.sign;
-            if (!first_stripe) {
-                const BlockOffset u = block_offset(c, s.states_up[static_cast<size_t>(b)], subx, suby);
-                g.offset_up = u.oy * kTemplatePitch + u.ox;
-                g.sign_up = u.sign;
-            }
-        }
+        f.vector_block_grains ? simd::block_grains(job, blocks) : scalar::block_grains(job, blocks);
     }
     const int suby_c = 1 << chroma_shift_y(f.src.format);
     const int y_end = std::min(16 * (k + 1), f.src.height);
@@ -184,6 +181,7 @@ void FrameSynthesis::apply(const FrameView& src, const FrameView& dst, const Syn
     for (size_t c = 0; c < 3; ++c)
         f.vector_kernels[c] = kernels_ == Kernels::kOptimized && !setup.pattern_interpolation &&
                               setup.runs[c].count <= kMaxVectorRuns;
+    f.vector_block_grains = kernels_ == Kernels::kOptimized;
     plan_stripes(src.width, src.height, cursor);
 
     // Every worker's buffers are sized here, on the calling thread: a worker that got no
