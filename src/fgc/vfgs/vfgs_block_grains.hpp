@@ -6,7 +6,7 @@
 // 8-bit frame's synthesis once the rows ran in one pass.
 //
 // A scalar reference (vfgs_block_grains_scalar.cpp, from block_offset()) and a Highway twin
-// (beside the row kernels' in simd/vfgs_row_kernels_hwy.cpp) that
+// (beside the row kernels' in simd/vfgs_kernels_hwy.cpp) that
 // tests/fgc/vfgs/vfgs_block_grains_test.cpp proves equal on random states for every
 // compiled target.
 #pragma once

@@ -1,7 +1,7 @@
 // The per-row work of the VFGS synthesis, split in two kernels, each with a scalar
 // reference (namespace vfgs::scalar, vfgs_row_kernels_scalar.cpp, written from the
 // per-sample helpers of vfgs_picture_synthesis.hpp) and a Highway twin (vfgs::simd,
-// simd/vfgs_row_kernels_hwy.cpp) that tests/fgc/vfgs/vfgs_simd_equivalence_test.cpp
+// simd/vfgs_kernels_hwy.cpp) that tests/fgc/vfgs/vfgs_simd_equivalence_test.cpp
 // proves equal on random input for every compiled target:
 //
 //  1. grain_row: per block, every sample's signed template sample picked by the sample's

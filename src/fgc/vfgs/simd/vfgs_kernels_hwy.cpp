@@ -4,7 +4,7 @@
 // vfgs_block_grains_scalar.cpp; tests/fgc/vfgs/vfgs_simd_equivalence_test.cpp and
 // vfgs_block_grains_test.cpp hold them equal.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "fgc/vfgs/simd/vfgs_row_kernels_hwy.cpp"
+#define HWY_TARGET_INCLUDE "fgc/vfgs/simd/vfgs_kernels_hwy.cpp"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
@@ -198,6 +198,9 @@ HWY_INLINE hn::Vec<D> ScaledGrainInt16(D /*d*/, hn::Vec<D> g, hn::Vec<D> sc, int
     return hn::MulFixedPoint15(hn::ShiftLeftSame(sc, 15 - shift), g);
 }
 
+// Whether ScaledGrainInt16 takes the job's scaling: 8-bit samples, a shift of 8..15.
+HWY_INLINE bool ScalesInInt16(const BlendRowJob& job) { return job.bit_depth == 8 && job.shift >= 8 && job.shift <= 15; }
+
 // 8 bits in int16 lanes, twice as many per vector: there scale_shift() is 8..13
 // (log2_scale_factor - model_id is 2..7; ScaledGrainInt16). The sum with the sample
 // saturates where the 0..255 clip would cut it anyway. Returns where the remaining samples
@@ -219,9 +222,7 @@ HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const 
 }
 
 void BlendRowU8(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale, uint8_t* out) {
-    const int from = job.bit_depth == 8 && job.shift >= 8 && job.shift <= 15
-                         ? BlendRowU8Int16(job, in, grain, scale, out)
-                         : 0;
+    const int from = ScalesInInt16(job) ? BlendRowU8Int16(job, in, grain, scale, out) : 0;
     BlendRow<false>(job, in, grain, scale, out, from);
 }
 void BlendRowU16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
@@ -354,7 +355,7 @@ HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& ble
 bool GrainBlendRowU8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
 #ifdef FILMGRAIN_VFGS_FUSED_ROW
     const int width = job.block_count * job.block_width;
-    if (blend.bit_depth != 8 || blend.shift < 8 || blend.shift > 15 || job.intensity_shift != 0 ||
+    if (!ScalesInInt16(blend) || job.intensity_shift != 0 ||
         (job.block_width != 16 && job.block_width != 8) || width != blend.width || width == 0 || width % 16 != 0)
         return false;
     const bool overlap = job.overlap_c1 != 0;
