@@ -85,10 +85,15 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
         job.overlap_c2 = c2;
         job.intensity_shift = f.src.bit_depth - 8;
         job.pattern_interpolation = f.setup.pattern_interpolation;
-        if constexpr (std::is_same_v<In, uint8_t> && std::is_same_v<Out, uint8_t>) {
-            if (vec && job.block_count == f.blocks &&
-                simd::grain_blend_row_u8(job, blend_job(f, pw), in, f.dst.planes[c].template row<Out>(py)))
-                return;
+        if constexpr (std::is_same_v<In, Out>) {
+            if (vec && job.block_count == f.blocks) {
+                Out* out = f.dst.planes[c].template row<Out>(py);
+                if constexpr (std::is_same_v<In, uint8_t>) {
+                    if (simd::grain_blend_row_u8(job, blend_job(f, pw), in, out)) return;
+                } else if (simd::grain_blend_row_u16(job, blend_job(f, pw), in, out)) {
+                    return;
+                }
+            }
         }
         grain_row(vec, job, in, grain, scale);
         if (job.block_count < f.blocks) {

@@ -12,8 +12,8 @@
 //  2. blend_row: the scaling and the additive blend with VFGS's clip, optionally
 //     rounded to 8 bits.
 //
-// At 8 bits the Highway side also has both in one pass (grain_blend_row_u8), whose
-// reference is the two scalar kernels run one after the other.
+// At 8 and 10 bits the Highway side also has both in one pass (grain_blend_row_u8,
+// grain_blend_row_u16), whose reference is the two scalar kernels run one after the other.
 #pragma once
 #include <cstdint>
 
@@ -49,6 +49,11 @@ struct GrainRowJob {
     bool pattern_interpolation = false;    // scalar kernels only
 };
 
+// The largest |grain| the blend kernels take above 8 bits (their 8-bit forms take any int16
+// grain). grain_row writes at most 199: the int8 templates are clipped to +-127, the
+// overlap's weights sum to 40 / 32 (+-159) and the deblocking's to 5 / 4.
+inline constexpr int kMaxBlendGrain = 255;
+
 // Per-row arguments of blend_row.
 struct BlendRowJob {
     int width = 0;      // samples
@@ -62,7 +67,7 @@ namespace scalar {
 // deblocks the one between two calls (deblock_edge()).
 void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale);
 void grain_row_u16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int16_t* scale);
-// `out` may be `in`.
+// `out` may be `in`. blend_row_u16 and blend_row_u16_to_u8: |grain| <= kMaxBlendGrain.
 void blend_row_u8(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale, uint8_t* out);
 void blend_row_u16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                    uint16_t* out);
@@ -80,11 +85,12 @@ void blend_row_u16(const BlendRowJob& job, const uint16_t* in, const int16_t* gr
                    uint16_t* out);
 void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                          uint8_t* out);
-// grain_row_u8 then blend_row_u8 over the same row, in one pass with no grain in memory,
-// where the target and the row allow (256-bit vectors; a row of whole blocks, 16 samples
-// a multiple; 8 bits with a shift of 8..15). Returns false, having written nothing, where
-// they do not: then the caller runs the two kernels.
+// grain_row then blend_row over the same row, in one pass with no grain in memory, where
+// the target and the row allow (256-bit vectors; a row of whole blocks, 16 samples a
+// multiple; 8 bits with a shift of 8..15, 10 bits with one of 6..15). Returns false,
+// having written nothing, where they do not: then the caller runs the two kernels.
 bool grain_blend_row_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out);
+bool grain_blend_row_u16(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out);
 }  // namespace simd
 
 }  // namespace filmgrain::vfgs

@@ -109,51 +109,102 @@ void check_grain_rows(std::mt19937& rng, int iterations) {
 
 TEST_P(VfgsSimdEquivalence, GrainRow8Bit) { check_grain_rows<uint8_t>(rng, 600); }
 
-// grain_blend_row_u8 against scalar::grain_row_u8 then scalar::blend_row_u8. It runs on
-// every 256-bit target and row of whole vectors (and must run there: the count of fused
-// rows is checked), and leaves the output alone where it declines.
-TEST_P(VfgsSimdEquivalence, GrainBlendRow8Bit) {
+// The grain range the 10-bit blends rely on (kMaxBlendGrain): the reference's grain row at
+// its extremes, every template sample at +-127 with the heaviest overlap (20, 20), is
+// +-199 (159 after the overlap, times 5 / 4 at the deblocked edges) and no more.
+TEST(VfgsGrainRange, ExtremesStayWithinTheBlendRange) {
+    for (const int v : {127, -127}) {
+        const std::vector<int8_t> pool(static_cast<size_t>(kTemplateBytes) * kMaxTemplates, static_cast<int8_t>(v));
+        ComponentLuts lut;
+        lut.tmpl.fill(0);
+        lut.scale.fill(255);
+        const IntensityRuns runs = intensity_runs(lut);
+        GrainRowJob job;
+        job.block_width = 16;
+        job.block_count = 4;
+        job.overlap_c1 = job.overlap_c2 = 20;
+        job.pool = job.pool_up = pool.data();
+        job.luts = &lut;
+        job.runs = &runs;
+        const std::vector<GrainBlock> blocks(static_cast<size_t>(job.block_count));
+        job.blocks = blocks.data();
+        const std::vector<uint16_t> in(64, 512);
+        std::vector<int16_t> grain(64), scale(64);
+        vfgs::scalar::grain_row_u16(job, in.data(), grain.data(), scale.data());
+        const auto [lo, hi] = std::minmax_element(grain.begin(), grain.end());
+        EXPECT_EQ(v > 0 ? *hi : -*lo, 199) << v;
+        EXPECT_EQ(v > 0 ? *lo : -*hi, 159) << v;  // the samples away from the edges
+        EXPECT_LE(199, kMaxBlendGrain);
+    }
+}
+
+// grain_blend_row_u8 (u16) against scalar::grain_row_u8 then scalar::blend_row_u8 (u16).
+// It runs on every 256-bit target and row of whole vectors (and must run there: the count
+// of fused rows is checked), and leaves the output alone where it declines.
+template <typename Pixel>
+void check_grain_blend_rows(std::mt19937& rng, bool fusing_target, int iterations) {
+    auto uniform = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    constexpr bool k8Bit = sizeof(Pixel) == 1;
     std::vector<int8_t> pool(static_cast<size_t>(kTemplateBytes) * kMaxTemplates);
-    const bool fusing_target = GetParam().bits <= HWY_AVX2;
     int fused = 0, eligible = 0;
-    for (int iter = 0; iter < 1500; ++iter) {
+    for (int iter = 0; iter < iterations; ++iter) {
         for (auto& v : pool) v = static_cast<int8_t>(uniform(0, 9) == 0 ? (uniform(0, 1) ? 127 : -127) : uniform(-127, 127));
         const ComponentLuts lut = random_luts(rng, uniform(0, 1) ? uniform(1, 5) : uniform(6, kMaxVectorRuns));
         const IntensityRuns runs = intensity_runs(lut);
         GrainRowJob job = random_grain_job(rng, pool, lut, runs, uniform(0, 3) ? 2 * uniform(1, 15) : uniform(1, 30));
+        job.intensity_shift = k8Bit ? 0 : 2;
         std::vector<GrainBlock> blocks = random_blocks(rng, pool, job);
         job.blocks = blocks.data();
         BlendRowJob blend;
         blend.width = job.block_count * job.block_width;
-        blend.bit_depth = 8;
-        blend.shift = uniform(0, 9) == 0 ? uniform(14, 15) : uniform(8, 13);
+        blend.bit_depth = k8Bit ? 8 : 10;
+        // scale_shift()'s range (8..13, 6..11), and now and then the rest of what the kernel takes
+        blend.shift = uniform(0, 9) == 0 ? uniform(k8Bit ? 14 : 12, 15) : uniform(k8Bit ? 8 : 6, k8Bit ? 13 : 11);
         const size_t n = static_cast<size_t>(blend.width);
-        std::vector<uint8_t> in(n);
-        for (auto& v : in) v = static_cast<uint8_t>(uniform(0, 3) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
+        const int top = k8Bit ? 255 : uniform(0, 3) == 0 ? 65535 : 1023;  // above 10 bits too
+        std::vector<Pixel> in(n);
+        for (auto& v : in) v = static_cast<Pixel>(uniform(0, 3) == 0 ? top * uniform(0, 1) : uniform(0, top));
         std::vector<int16_t> grain(n), scale(n);
-        std::vector<uint8_t> want(n + 1, 0xA5), got(want);
-        vfgs::scalar::grain_row_u8(job, in.data(), grain.data(), scale.data());
-        vfgs::scalar::blend_row_u8(blend, in.data(), grain.data(), scale.data(), want.data());
+        const Pixel fill = static_cast<Pixel>(0xA5A5);
+        std::vector<Pixel> want(n + 1, fill), got(want);
+        if constexpr (k8Bit) {
+            vfgs::scalar::grain_row_u8(job, in.data(), grain.data(), scale.data());
+            vfgs::scalar::blend_row_u8(blend, in.data(), grain.data(), scale.data(), want.data());
+        } else {
+            vfgs::scalar::grain_row_u16(job, in.data(), grain.data(), scale.data());
+            vfgs::scalar::blend_row_u16(blend, in.data(), grain.data(), scale.data(), want.data());
+        }
+        const auto fuse = [&](const Pixel* from, Pixel* to) {
+            if constexpr (k8Bit) return vfgs::simd::grain_blend_row_u8(job, blend, from, to);
+            else return vfgs::simd::grain_blend_row_u16(job, blend, from, to);
+        };
         const bool whole_vectors = n % 16 == 0;
         eligible += whole_vectors;
         const std::string what = "iteration " + std::to_string(iter) + " blocks " + std::to_string(job.block_count) + "x" +
                                  std::to_string(job.block_width) + " runs " + std::to_string(runs.count) + " overlap " +
                                  std::to_string(job.overlap_c1) + " shift " + std::to_string(blend.shift);
-        if (!vfgs::simd::grain_blend_row_u8(job, blend, in.data(), got.data())) {
+        if (!fuse(in.data(), got.data())) {
             ASSERT_FALSE(fusing_target && whole_vectors) << what;
-            ASSERT_EQ(got, std::vector<uint8_t>(n + 1, 0xA5)) << what;
+            ASSERT_EQ(got, std::vector<Pixel>(n + 1, fill)) << what;
             continue;
         }
         ++fused;
         ASSERT_EQ(got, want) << what;
-        std::vector<uint8_t> inplace(in);  // out == in
-        ASSERT_TRUE(vfgs::simd::grain_blend_row_u8(job, blend, inplace.data(), inplace.data()));
-        inplace.push_back(0xA5);
+        std::vector<Pixel> inplace(in);  // out == in
+        ASSERT_TRUE(fuse(inplace.data(), inplace.data()));
+        inplace.push_back(fill);
         ASSERT_EQ(inplace, want) << what;
     }
     if (fusing_target) EXPECT_EQ(fused, eligible);
     else EXPECT_EQ(fused, 0);
-    EXPECT_GT(eligible, 1000);
+    EXPECT_GT(eligible, iterations * 2 / 3);
+}
+
+TEST_P(VfgsSimdEquivalence, GrainBlendRow8Bit) {
+    check_grain_blend_rows<uint8_t>(rng, GetParam().bits <= HWY_AVX2, 1500);
+}
+TEST_P(VfgsSimdEquivalence, GrainBlendRow10Bit) {
+    check_grain_blend_rows<uint16_t>(rng, GetParam().bits <= HWY_AVX2, 1500);
 }
 TEST_P(VfgsSimdEquivalence, GrainRow10Bit) { check_grain_rows<uint16_t>(rng, 600); }
 
@@ -164,10 +215,13 @@ void check_blend_rows(std::mt19937& rng, int kind, int iterations) {
         BlendRowJob job;
         job.width = uniform(0, 3) ? uniform(1, 300) : 16 * uniform(1, 20);
         job.bit_depth = kind == 0 ? 8 : 10;
-        job.shift = uniform(job.bit_depth == 8 ? 8 : 6, job.bit_depth == 8 ? 13 : 11);
+        // scale_shift()'s range, and now and then any shift (the kernels' other forms)
+        job.shift = uniform(0, 9) == 0 ? uniform(1, 15) : uniform(job.bit_depth == 8 ? 8 : 6, job.bit_depth == 8 ? 13 : 11);
         const size_t n = static_cast<size_t>(job.width);
         std::vector<int16_t> grain(n), scale(n);
-        const int gmax = uniform(0, 3) == 0 ? 32767 : 159;  // beyond the synthesis' range too
+        // beyond the synthesis' range (199) too: any int16 at 8 bits, up to the contract's
+        // kMaxBlendGrain above
+        const int gmax = uniform(0, 3) == 0 ? (kind == 0 ? 32767 : kMaxBlendGrain) : 199;
         for (auto& g : grain) g = static_cast<int16_t>(uniform(0, 7) == 0 ? (uniform(0, 1) ? gmax : -gmax) : uniform(-gmax, gmax));
         for (auto& s : scale) s = static_cast<int16_t>(uniform(0, 5) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
         const int16_t* g = grain.data();

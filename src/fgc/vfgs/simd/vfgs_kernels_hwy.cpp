@@ -221,40 +221,81 @@ HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const 
     return x;
 }
 
+// 10 bits in int16 lanes as well. There scale_shift() is 6..11, so the 15 - shift bits that
+// take the product to q15 can exceed the 7 the scale (<= 255) has room for; the rest move
+// the grain up, which kMaxBlendGrain << 7 leaves room for, and one pmulhrsw again gives
+// (sc * g + 2^(shift - 1)) >> shift exactly. Samples are capped at 32767 first: a sample
+// at or above it ends at the top of the clip either way, as |scaled| <= 255 * 255 >> 6
+// keeps the sum above 1020. Returns where the remaining samples start.
+template <bool kTo8Bit, typename Out>
+HWY_INLINE int BlendRowU16Int16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain,
+                                const int16_t* scale, Out* out) {
+    static_assert(kMaxBlendGrain << 7 <= 32767 && 32767 - (255 * kMaxBlendGrain >> 6) > 1020);
+    const hn::ScalableTag<int16_t> d;
+    const hn::RebindToUnsigned<decltype(d)> du;
+    const hn::Rebind<Out, decltype(d)> dout;
+    const int n = static_cast<int>(hn::Lanes(d));
+    const int up = 15 - job.shift, scale_up = up < 7 ? up : 7, grain_up = up - scale_up;
+    const auto cap = hn::Set(du, uint16_t{32767});
+    const auto hi = hn::Set(d, static_cast<int16_t>(255 << (job.bit_depth - 8)));
+    const auto zero = hn::Zero(d), two = hn::Set(d, int16_t{2});
+    int x = 0;
+    for (; x + n <= job.width; x += n) {
+        const auto scaled = hn::MulFixedPoint15(hn::ShiftLeftSame(hn::LoadU(d, scale + x), scale_up),
+                                                hn::ShiftLeftSame(hn::LoadU(d, grain + x), grain_up));
+        const auto sample = hn::BitCast(d, hn::Min(hn::LoadU(du, in + x), cap));
+        auto v = hn::Min(hn::Max(hn::SaturatedAdd(sample, scaled), zero), hi);
+        if constexpr (kTo8Bit) {
+            hn::StoreU(hn::DemoteTo(dout, hn::ShiftRight<2>(hn::Add(v, two))), dout, out + x);  // to_8bit()
+        } else {
+            hn::StoreU(hn::BitCast(dout, v), dout, out + x);
+        }
+    }
+    return x;
+}
+
+// Whether BlendRowU16Int16 takes the job: 10 bits with a shift of 6..15 (scale_shift()
+// gives 6..11).
+HWY_INLINE bool BlendsU16InInt16(const BlendRowJob& job) {
+    return job.bit_depth == 10 && job.shift >= 6 && job.shift <= 15;
+}
+
 void BlendRowU8(const BlendRowJob& job, const uint8_t* in, const int16_t* grain, const int16_t* scale, uint8_t* out) {
     const int from = ScalesInInt16(job) ? BlendRowU8Int16(job, in, grain, scale, out) : 0;
     BlendRow<false>(job, in, grain, scale, out, from);
 }
 void BlendRowU16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                  uint16_t* out) {
-    BlendRow<false>(job, in, grain, scale, out);
+    const int from = BlendsU16InInt16(job) ? BlendRowU16Int16<false>(job, in, grain, scale, out) : 0;
+    BlendRow<false>(job, in, grain, scale, out, from);
 }
 void BlendRowU16ToU8(const BlendRowJob& job, const uint16_t* in, const int16_t* grain, const int16_t* scale,
                      uint8_t* out) {
-    BlendRow<true>(job, in, grain, scale, out);
+    const int from = BlendsU16InInt16(job) ? BlendRowU16Int16<true>(job, in, grain, scale, out) : 0;
+    BlendRow<true>(job, in, grain, scale, out, from);
 }
 
-// grain_row_u8 and blend_row_u8 in one pass over 8-bit rows, with no grain or scale
-// written to memory and read back, and no scalar edge loop: on a Zen 3 (AVX2) that took a
-// 1080p frame on one thread from 2.09-2.51 to 1.70-1.89 ms (4 interleaved rounds,
+// grain_row and blend_row in one pass over 8-bit or 10-bit rows, with no grain or scale
+// written to memory and read back, and no scalar edge loop: on a Zen 3 (AVX2) that took an
+// 8-bit 1080p frame on one thread from 2.09-2.51 to 1.70-1.89 ms (4 interleaved rounds,
 // docs/performance-notes.md). The grain of a
 // 256-bit vector (one 16-wide block or two 8-wide ones) is scaled and blended once the
 // vector after it is known, since the deblocking of an edge reads two samples either
 // side (deblock_edge(), from unfiltered values). Needs whole 256-bit vectors of int16,
 // a row of whole vectors and blocks (width = block_count * block_width), and a shift
-// ScaledGrainInt16 takes.
+// the int16 scaling takes (ScalesInInt16, BlendsU16InInt16).
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
 #define FILMGRAIN_VFGS_FUSED_ROW 1
 
 // The unfiltered grain of a vector's blocks (one 16-wide block or two 8-wide ones), its
-// scales and its samples.
+// scales and its samples (10 bits: capped at 32767, as in BlendRowU16Int16).
 struct FusedVector {
     hn::Vec<hn::Full256<int16_t>> grain, scale, sample;
 };
 
-template <bool kOverlap, int kRuns, int kBlockWidth>
-HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in,
-                                     uint8_t* out) {
+template <bool kOverlap, int kRuns, int kBlockWidth, typename Pixel>
+HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& blend, const Pixel* in, Pixel* out) {
+    constexpr bool k8Bit = sizeof(Pixel) == 1;
     const hn::Full256<int16_t> d;
     const hn::Half<decltype(d)> dh;
     const hn::RebindToUnsigned<decltype(d)> du;
@@ -264,6 +305,13 @@ HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& 
     constexpr int kLanes = 16;
     RunStep steps[kMaxVectorRuns];
     const int count = RunSteps(*job.runs, kRuns, steps);
+    // 10 bits: BlendRowU16Int16's split of the q15 shift, the scale's part applied to the
+    // runs' scales here, once.
+    const int up = 15 - blend.shift, scale_up = up < 7 ? up : 7, grain_up = up - scale_up;
+    if constexpr (!k8Bit)
+        for (int r = 0; r < count; ++r) steps[r].scale = static_cast<int16_t>(steps[r].scale << scale_up);
+    const auto cap = hn::Set(du, uint16_t{32767});
+    const auto hi = hn::Set(d, static_cast<int16_t>(255 << (blend.bit_depth - 8)));
     const int8_t* const pool = job.pool;
     const int8_t* const pool_up = job.pool_up;
     const GrainBlock* const blocks = job.blocks;
@@ -286,10 +334,18 @@ HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& 
         const GrainBlock& b0 = blocks[v * kLanes / kBlockWidth];
         const GrainBlock& b1 = kBlockWidth == 16 ? b0 : blocks[v * kLanes / kBlockWidth + 1];
         FusedVector r;
-        r.sample = hn::BitCast(d, hn::PromoteTo(du, hn::LoadU(du8, in + v * kLanes)));
+        hn::Vec<decltype(d)> inten;
+        if constexpr (k8Bit) {
+            r.sample = hn::BitCast(d, hn::PromoteTo(du, hn::LoadU(du8, in + v * kLanes)));
+            inten = r.sample;
+        } else {
+            const auto raw = hn::LoadU(du, in + v * kLanes);
+            r.sample = hn::BitCast(d, hn::Min(raw, cap));
+            inten = hn::BitCast(d, hn::Min(hn::ShiftRight<2>(raw), hn::Set(du, uint16_t{255})));  // Intensity()
+        }
         hn::Vec<decltype(d)> g, gu;
         PickRuns<kOverlap>(
-            d, steps, count, r.sample, [&](int32_t t) { return rows(pool, b0.offset, b1.offset, t); },
+            d, steps, count, inten, [&](int32_t t) { return rows(pool, b0.offset, b1.offset, t); },
             [&](int32_t t) { return rows(pool_up, b0.offset_up, b1.offset_up, t); }, g, gu, r.scale);
         const int16_t s0 = static_cast<int16_t>(b0.sign), s1 = static_cast<int16_t>(b1.sign);
         const auto sign = kOverlap ? per_block(static_cast<int16_t>(s0 * c1), static_cast<int16_t>(s1 * c1))
@@ -323,8 +379,14 @@ HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& 
         if (v == 0) mask = hn::AndNot(first_lane, mask);
         if (v == vectors - 1) mask = hn::AndNot(last_lane, mask);
         const auto g = hn::IfVecThenElse(mask, filtered, c.grain);
-        const auto scaled = ScaledGrainInt16(d, g, c.scale, shift);
-        hn::StoreU(hn::DemoteTo(du8, hn::SaturatedAdd(c.sample, scaled)), du8, out + v * kLanes);
+        if constexpr (k8Bit) {
+            const auto scaled = ScaledGrainInt16(d, g, c.scale, shift);
+            hn::StoreU(hn::DemoteTo(du8, hn::SaturatedAdd(c.sample, scaled)), du8, out + v * kLanes);
+        } else {
+            const auto scaled = hn::MulFixedPoint15(c.scale, hn::ShiftLeftSame(g, grain_up));
+            const auto sum = hn::Min(hn::Max(hn::SaturatedAdd(c.sample, scaled), hn::Zero(d)), hi);
+            hn::StoreU(hn::BitCast(du, sum), du, out + v * kLanes);
+        }
     };
 
     // Each vector is finished once the next one is loaded, which also makes out == in safe.
@@ -340,23 +402,26 @@ HWY_NOINLINE void GrainBlendBlocksU8(const GrainRowJob& job, const BlendRowJob& 
     finish(vectors - 1, cur, before, hn::ConcatLowerUpper(d, hn::Zero(d), cur.grain));
 }
 
-template <bool kOverlap, int kBlockWidth>
-HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+template <bool kOverlap, int kBlockWidth, typename Pixel>
+HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& blend, const Pixel* in, Pixel* out) {
     switch (job.runs->count) {
-        case 1: return GrainBlendBlocksU8<kOverlap, 1, kBlockWidth>(job, blend, in, out);
-        case 2: return GrainBlendBlocksU8<kOverlap, 2, kBlockWidth>(job, blend, in, out);
-        case 3: return GrainBlendBlocksU8<kOverlap, 3, kBlockWidth>(job, blend, in, out);
-        case 4: return GrainBlendBlocksU8<kOverlap, 4, kBlockWidth>(job, blend, in, out);
-        default: return GrainBlendBlocksU8<kOverlap, 0, kBlockWidth>(job, blend, in, out);
+        case 1: return GrainBlendBlocks<kOverlap, 1, kBlockWidth>(job, blend, in, out);
+        case 2: return GrainBlendBlocks<kOverlap, 2, kBlockWidth>(job, blend, in, out);
+        case 3: return GrainBlendBlocks<kOverlap, 3, kBlockWidth>(job, blend, in, out);
+        case 4: return GrainBlendBlocks<kOverlap, 4, kBlockWidth>(job, blend, in, out);
+        default: return GrainBlendBlocks<kOverlap, 0, kBlockWidth>(job, blend, in, out);
     }
 }
 #endif
 
-bool GrainBlendRowU8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+template <typename Pixel>
+HWY_INLINE bool GrainBlendRow(const GrainRowJob& job, const BlendRowJob& blend, const Pixel* in, Pixel* out) {
 #ifdef FILMGRAIN_VFGS_FUSED_ROW
     const int width = job.block_count * job.block_width;
-    if (!ScalesInInt16(blend) || job.intensity_shift != 0 ||
-        (job.block_width != 16 && job.block_width != 8) || width != blend.width || width == 0 || width % 16 != 0)
+    const bool scales = sizeof(Pixel) == 1 ? ScalesInInt16(blend) && job.intensity_shift == 0
+                                           : BlendsU16InInt16(blend) && job.intensity_shift == 2;
+    if (!scales || (job.block_width != 16 && job.block_width != 8) || width != blend.width || width == 0 ||
+        width % 16 != 0)
         return false;
     const bool overlap = job.overlap_c1 != 0;
     if (job.block_width == 16) overlap ? GrainBlendForRuns<true, 16>(job, blend, in, out)
@@ -369,6 +434,13 @@ bool GrainBlendRowU8(const GrainRowJob& job, const BlendRowJob& blend, const uin
 #endif
 }
 #undef FILMGRAIN_VFGS_FUSED_ROW
+
+bool GrainBlendRowU8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+    return GrainBlendRow(job, blend, in, out);
+}
+bool GrainBlendRowU16(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out) {
+    return GrainBlendRow(job, blend, in, out);
+}
 
 // The bit fields of one component (vfgs_random.hpp). Every 10-bit field is the register
 // rotated right by some count and masked: Cb's vertical field takes R[31:24] with R[1:0]
@@ -439,6 +511,7 @@ HWY_EXPORT(BlendRowU8);
 HWY_EXPORT(BlendRowU16);
 HWY_EXPORT(BlendRowU16ToU8);
 HWY_EXPORT(GrainBlendRowU8);
+HWY_EXPORT(GrainBlendRowU16);
 HWY_EXPORT(BlockGrains);
 
 void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale) {
@@ -461,6 +534,9 @@ void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16
 
 bool grain_blend_row_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
     return HWY_DYNAMIC_DISPATCH(GrainBlendRowU8)(job, blend, in, out);
+}
+bool grain_blend_row_u16(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out) {
+    return HWY_DYNAMIC_DISPATCH(GrainBlendRowU16)(job, blend, in, out);
 }
 
 void block_grains(const BlockGrainsJob& job, GrainBlock* out) { HWY_DYNAMIC_DISPATCH(BlockGrains)(job, out); }
