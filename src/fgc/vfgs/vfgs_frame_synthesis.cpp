@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <type_traits>
 
 #include "core/thread_pool.hpp"
 #include "fgc/vfgs/vfgs_block_grains.hpp"
@@ -43,6 +42,16 @@ void blend_row(bool vec, const BlendRowJob& job, const uint16_t* in, const int16
 void blend_row(bool vec, const BlendRowJob& job, const uint16_t* in, const int16_t* g, const int16_t* s,
                uint8_t* out) {
     vec ? simd::blend_row_u16_to_u8(job, in, g, s, out) : scalar::blend_row_u16_to_u8(job, in, g, s, out);
+}
+
+bool grain_blend_row(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out) {
+    return simd::grain_blend_row_u8(job, blend, in, out);
+}
+bool grain_blend_row(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out) {
+    return simd::grain_blend_row_u16(job, blend, in, out);
+}
+bool grain_blend_row(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint8_t* out) {
+    return simd::grain_blend_row_u16_to_u8(job, blend, in, out);
 }
 
 const int8_t* pool_base(const SynthesisSetup& st, int c) {
@@ -85,16 +94,9 @@ void synthesize_row(const FrameJob& f, int c, int py, int j, bool first_stripe, 
         job.overlap_c2 = c2;
         job.intensity_shift = f.src.bit_depth - 8;
         job.pattern_interpolation = f.setup.pattern_interpolation;
-        if constexpr (std::is_same_v<In, Out>) {
-            if (vec && job.block_count == f.blocks) {
-                Out* out = f.dst.planes[c].template row<Out>(py);
-                if constexpr (std::is_same_v<In, uint8_t>) {
-                    if (simd::grain_blend_row_u8(job, blend_job(f, pw), in, out)) return;
-                } else if (simd::grain_blend_row_u16(job, blend_job(f, pw), in, out)) {
-                    return;
-                }
-            }
-        }
+        if (vec && job.block_count == f.blocks &&
+            grain_blend_row(job, blend_job(f, pw), in, f.dst.planes[c].template row<Out>(py)))
+            return;
         grain_row(vec, job, in, grain, scale);
         if (job.block_count < f.blocks) {
             // A last block that sticks out of the row. There the reference reads its

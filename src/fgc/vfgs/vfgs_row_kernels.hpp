@@ -12,8 +12,8 @@
 //  2. blend_row: the scaling and the additive blend with VFGS's clip, optionally
 //     rounded to 8 bits.
 //
-// At 8 and 10 bits the Highway side also has both in one pass (grain_blend_row_u8,
-// grain_blend_row_u16), whose reference is the two scalar kernels run one after the other.
+// At 8 and 10 bits the Highway side also has both in one pass (grain_blend_row_*), whose
+// reference is the two scalar kernels run one after the other.
 #pragma once
 #include <cstdint>
 
@@ -91,6 +91,7 @@ void blend_row_u16_to_u8(const BlendRowJob& job, const uint16_t* in, const int16
 // having written nothing, where they do not: then the caller runs the two kernels.
 bool grain_blend_row_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint8_t* in, uint8_t* out);
 bool grain_blend_row_u16(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out);
+bool grain_blend_row_u16_to_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint8_t* out);
 }  // namespace simd
 
 }  // namespace filmgrain::vfgs

@@ -275,7 +275,8 @@ void BlendRowU16ToU8(const BlendRowJob& job, const uint16_t* in, const int16_t* 
     BlendRow<true>(job, in, grain, scale, out, from);
 }
 
-// grain_row and blend_row in one pass over 8-bit or 10-bit rows, with no grain or scale
+// grain_row and blend_row in one pass over 8-bit or 10-bit rows (10-bit ones also to 8-bit
+// output, --outdepth 8), with no grain or scale
 // written to memory and read back, and no scalar edge loop: on a Zen 3 (AVX2) that took an
 // 8-bit 1080p frame on one thread from 2.09-2.51 to 1.70-1.89 ms (4 interleaved rounds,
 // docs/performance-notes.md). The grain of a
@@ -293,9 +294,9 @@ struct FusedVector {
     hn::Vec<hn::Full256<int16_t>> grain, scale, sample;
 };
 
-template <bool kOverlap, int kRuns, int kBlockWidth, typename Pixel>
-HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& blend, const Pixel* in, Pixel* out) {
-    constexpr bool k8Bit = sizeof(Pixel) == 1;
+template <bool kOverlap, int kRuns, int kBlockWidth, typename In, typename Out>
+HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& blend, const In* in, Out* out) {
+    constexpr bool k8Bit = sizeof(In) == 1;
     const hn::Full256<int16_t> d;
     const hn::Half<decltype(d)> dh;
     const hn::RebindToUnsigned<decltype(d)> du;
@@ -385,7 +386,10 @@ HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& bl
         } else {
             const auto scaled = hn::MulFixedPoint15(c.scale, hn::ShiftLeftSame(g, grain_up));
             const auto sum = hn::Min(hn::Max(hn::SaturatedAdd(c.sample, scaled), hn::Zero(d)), hi);
-            hn::StoreU(hn::BitCast(du, sum), du, out + v * kLanes);
+            if constexpr (sizeof(Out) == 1)
+                hn::StoreU(hn::DemoteTo(du8, hn::ShiftRight<2>(hn::Add(sum, two))), du8, out + v * kLanes);  // to_8bit()
+            else
+                hn::StoreU(hn::BitCast(du, sum), du, out + v * kLanes);
         }
     };
 
@@ -402,8 +406,8 @@ HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& bl
     finish(vectors - 1, cur, before, hn::ConcatLowerUpper(d, hn::Zero(d), cur.grain));
 }
 
-template <bool kOverlap, int kBlockWidth, typename Pixel>
-HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& blend, const Pixel* in, Pixel* out) {
+template <bool kOverlap, int kBlockWidth, typename In, typename Out>
+HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& blend, const In* in, Out* out) {
     switch (job.runs->count) {
         case 1: return GrainBlendBlocks<kOverlap, 1, kBlockWidth>(job, blend, in, out);
         case 2: return GrainBlendBlocks<kOverlap, 2, kBlockWidth>(job, blend, in, out);
@@ -414,11 +418,11 @@ HWY_INLINE void GrainBlendForRuns(const GrainRowJob& job, const BlendRowJob& ble
 }
 #endif
 
-template <typename Pixel>
-HWY_INLINE bool GrainBlendRow(const GrainRowJob& job, const BlendRowJob& blend, const Pixel* in, Pixel* out) {
+template <typename In, typename Out>
+HWY_INLINE bool GrainBlendRow(const GrainRowJob& job, const BlendRowJob& blend, const In* in, Out* out) {
 #ifdef FILMGRAIN_VFGS_FUSED_ROW
     const int width = job.block_count * job.block_width;
-    const bool scales = sizeof(Pixel) == 1 ? ScalesInInt16(blend) && job.intensity_shift == 0
+    const bool scales = sizeof(In) == 1 ? ScalesInInt16(blend) && job.intensity_shift == 0
                                            : BlendsU16InInt16(blend) && job.intensity_shift == 2;
     if (!scales || (job.block_width != 16 && job.block_width != 8) || width != blend.width || width == 0 ||
         width % 16 != 0)
@@ -439,6 +443,9 @@ bool GrainBlendRowU8(const GrainRowJob& job, const BlendRowJob& blend, const uin
     return GrainBlendRow(job, blend, in, out);
 }
 bool GrainBlendRowU16(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out) {
+    return GrainBlendRow(job, blend, in, out);
+}
+bool GrainBlendRowU16ToU8(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint8_t* out) {
     return GrainBlendRow(job, blend, in, out);
 }
 
@@ -512,6 +519,7 @@ HWY_EXPORT(BlendRowU16);
 HWY_EXPORT(BlendRowU16ToU8);
 HWY_EXPORT(GrainBlendRowU8);
 HWY_EXPORT(GrainBlendRowU16);
+HWY_EXPORT(GrainBlendRowU16ToU8);
 HWY_EXPORT(BlockGrains);
 
 void grain_row_u8(const GrainRowJob& job, const uint8_t* in, int16_t* grain, int16_t* scale) {
@@ -537,6 +545,9 @@ bool grain_blend_row_u8(const GrainRowJob& job, const BlendRowJob& blend, const 
 }
 bool grain_blend_row_u16(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint16_t* out) {
     return HWY_DYNAMIC_DISPATCH(GrainBlendRowU16)(job, blend, in, out);
+}
+bool grain_blend_row_u16_to_u8(const GrainRowJob& job, const BlendRowJob& blend, const uint16_t* in, uint8_t* out) {
+    return HWY_DYNAMIC_DISPATCH(GrainBlendRowU16ToU8)(job, blend, in, out);
 }
 
 void block_grains(const BlockGrainsJob& job, GrainBlock* out) { HWY_DYNAMIC_DISPATCH(BlockGrains)(job, out); }
