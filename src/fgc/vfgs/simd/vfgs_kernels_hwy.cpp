@@ -160,9 +160,9 @@ void GrainRowU16(const GrainRowJob& job, const uint16_t* in, int16_t* grain, int
     GrainRow(job, in, grain, scale);
 }
 
-// Scaling and blending in int32 lanes, from sample `x` on: the scale (<= 255) times the
-// grain (|g| <= 159) can pass 32767, and 10-bit input may hold any 16-bit value (8 bits take
-// BlendRowU8Int16 first, below).
+// Scaling and blending in int32 lanes, from sample `x` on, for any int16 grain and shift
+// and any 16-bit sample: the samples the int16 forms below (BlendRowU8Int16,
+// BlendRowU16Int16) leave at the end of a row, and the shifts they do not take.
 template <bool kTo8Bit, typename In, typename Out>
 HWY_INLINE void BlendRow(const BlendRowJob& job, const In* in, const int16_t* grain, const int16_t* scale, Out* out,
                          int x = 0) {
@@ -224,19 +224,29 @@ HWY_INLINE int BlendRowU8Int16(const BlendRowJob& job, const uint8_t* in, const 
 // 10 bits in int16 lanes as well. There scale_shift() is 6..11, so the 15 - shift bits that
 // take the product to q15 can exceed the 7 the scale (<= 255) has room for; the rest move
 // the grain up, which kMaxBlendGrain << 7 leaves room for, and one pmulhrsw again gives
-// (sc * g + 2^(shift - 1)) >> shift exactly. Samples are capped at 32767 first: a sample
-// at or above it ends at the top of the clip either way, as |scaled| <= 255 * 255 >> 6
-// keeps the sum above 1020. Returns where the remaining samples start.
+// (sc * g + 2^(shift - 1)) >> shift exactly. Samples are capped at kSampleCap first: a
+// sample at or above it ends at the top of the clip either way, as |scaled| <= 255 * 255 >> 6
+// keeps the sum above 1020.
+struct Q15Shifts {
+    int scale_up, grain_up;
+};
+HWY_INLINE Q15Shifts Q15ShiftsOf(const BlendRowJob& job) {
+    const int up = 15 - job.shift;
+    return up < 7 ? Q15Shifts{up, 0} : Q15Shifts{7, up - 7};
+}
+constexpr uint16_t kSampleCap = 32767;
+static_assert(kMaxBlendGrain << 7 <= 32767 && kSampleCap - (255 * kMaxBlendGrain >> 6) > 1020);
+
+// The blend in that form; returns where the remaining samples start.
 template <bool kTo8Bit, typename Out>
 HWY_INLINE int BlendRowU16Int16(const BlendRowJob& job, const uint16_t* in, const int16_t* grain,
                                 const int16_t* scale, Out* out) {
-    static_assert(kMaxBlendGrain << 7 <= 32767 && 32767 - (255 * kMaxBlendGrain >> 6) > 1020);
     const hn::ScalableTag<int16_t> d;
     const hn::RebindToUnsigned<decltype(d)> du;
     const hn::Rebind<Out, decltype(d)> dout;
     const int n = static_cast<int>(hn::Lanes(d));
-    const int up = 15 - job.shift, scale_up = up < 7 ? up : 7, grain_up = up - scale_up;
-    const auto cap = hn::Set(du, uint16_t{32767});
+    const auto [scale_up, grain_up] = Q15ShiftsOf(job);
+    const auto cap = hn::Set(du, kSampleCap);
     const auto hi = hn::Set(d, static_cast<int16_t>(255 << (job.bit_depth - 8)));
     const auto zero = hn::Zero(d), two = hn::Set(d, int16_t{2});
     int x = 0;
@@ -289,7 +299,7 @@ void BlendRowU16ToU8(const BlendRowJob& job, const uint16_t* in, const int16_t* 
 #define FILMGRAIN_VFGS_FUSED_ROW 1
 
 // The unfiltered grain of a vector's blocks (one 16-wide block or two 8-wide ones), its
-// scales and its samples (10 bits: capped at 32767, as in BlendRowU16Int16).
+// scales and its samples (10 bits: capped at kSampleCap, as in BlendRowU16Int16).
 struct FusedVector {
     hn::Vec<hn::Full256<int16_t>> grain, scale, sample;
 };
@@ -308,10 +318,10 @@ HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& bl
     const int count = RunSteps(*job.runs, kRuns, steps);
     // 10 bits: BlendRowU16Int16's split of the q15 shift, the scale's part applied to the
     // runs' scales here, once.
-    const int up = 15 - blend.shift, scale_up = up < 7 ? up : 7, grain_up = up - scale_up;
+    const auto [scale_up, grain_up] = Q15ShiftsOf(blend);
     if constexpr (!k8Bit)
         for (int r = 0; r < count; ++r) steps[r].scale = static_cast<int16_t>(steps[r].scale << scale_up);
-    const auto cap = hn::Set(du, uint16_t{32767});
+    const auto cap = hn::Set(du, kSampleCap);
     const auto hi = hn::Set(d, static_cast<int16_t>(255 << (blend.bit_depth - 8)));
     const int8_t* const pool = job.pool;
     const int8_t* const pool_up = job.pool_up;
