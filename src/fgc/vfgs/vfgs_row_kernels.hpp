@@ -7,8 +7,7 @@
 //  1. grain_row: per block, every sample's signed template sample picked by the sample's
 //     intensity, with the vertical overlap on the first rows of a stripe, then the
 //     horizontal deblocking of the edges between the row's blocks; also the sample's
-//     scale. Unscaled, one int16 per sample (|g| <= 159, 127 * (20 + 20) / 32 at the
-//     4:2:0 chroma overlap).
+//     scale. Unscaled, one int16 per sample (|g| <= 199: kMaxBlendGrain below).
 //  2. blend_row: the scaling and the additive blend with VFGS's clip, optionally
 //     rounded to 8 bits.
 //
