@@ -357,8 +357,11 @@ void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int 
             std::memcpy(out + r * out_stride + j * block, blocks[j] + offset + r * pitch, std::size_t(block));
 }
 
-// The generic form: each row gathered and zeroed into `row` (one element before column 0,
-// which DeblockBlendRowU8I8 reads and never uses), then blended from there.
+// The generic form: the rows gathered into `row` block by block, each block's pointer read
+// once for all of them (gathered row by row, the pointer loads cost a frame 5 % more on a
+// Zen 3: 1080p 8-bit rdd5, one thread, median of 12 interleaved pairs), then each row zeroed
+// from `end` and blended. Every row has one element before column 0, which
+// DeblockBlendRowU8I8 reads and never uses (the previous row's last, or row[0]).
 void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                     std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
                                     std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
@@ -366,8 +369,9 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
     int8_t* g = row + 1;
     const int end = std::min(grain_end, width + 1);
     const int count = (end + block - 1) / block;
-    for (int r = 0; r < rows; r++) {
-        GatherBlockBandsI8(blocks, offset + r * pitch, count, block, 1, 0, g, 0);
+    const std::ptrdiff_t stride = 1 + std::max<std::ptrdiff_t>(std::ptrdiff_t(count) * block, width + 2);
+    GatherBlockBandsI8(blocks, offset, count, block, rows, pitch, g, stride);
+    for (int r = 0; r < rows; r++, g += stride) {
         std::fill(g + end, g + width + 2, int8_t(0));
         DeblockBlendRowU8I8(src + r * src_stride, dst + r * dst_stride, g, width, block,
                             ahead.below(r, src_stride, dst_stride));
