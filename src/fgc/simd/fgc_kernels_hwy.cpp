@@ -383,6 +383,7 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
     }
 }
 
+#include "fgc/simd/block_tables_u8_avx2-inl.h"
 #include "fgc/simd/block_rows_u8_avx512-inl.h"
 
 void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
@@ -430,6 +431,8 @@ void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int widt
     int j = 0;
 #if HWY_TARGET == HWY_AVX3
     if (block == 8) j = avx512::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
+#elif HWY_TARGET == HWY_AVX2
+    if (block == 8) j = avx2::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
 #endif
     uint32_t sums[64];
     for (; j < blocks; j += 64) {
