@@ -161,6 +161,32 @@ TEST_P(SimdEquivalence, FgcBlockSums) {
     }
 }
 
+// The exact sums, against the element-wise sum, over the whole 16-bit range (samples beyond
+// a bit depth are bad input the sums must still add exactly: the averages clamp them), often
+// all 65535 or all 0, the widths past a multiple of four blocks and every row count.
+TEST_P(SimdEquivalence, FgcBlockSums16BitExact) {
+    for (int iter = 0; iter < 400; iter++) {
+        const int bs = uniform(0, 2) ? 8 : 8 << uniform(1, 2);
+        const int w = uniform(0, 1) ? uniform(1, 300) : 32 * uniform(1, 8) + uniform(-9, 9);
+        const int rows = uniform(1, bs);
+        const std::ptrdiff_t pitch = w + uniform(0, 40);
+        const int extreme = uniform(0, 3);  // 0: all 0, 1: all 65535, else random
+        std::vector<uint16_t> plane(std::size_t(pitch) * std::size_t(rows));
+        for (auto& v : plane) v = uint16_t(extreme == 0 ? 0 : extreme == 1 ? 65535 : uniform(0, 65535));
+        const int blocks = std::max(w, 1) / bs;
+        std::vector<uint32_t> sums(std::size_t(blocks) + 1, 0xdeadbeef);
+        fgc::simd::block_sums_u16(plane.data(), pitch * std::ptrdiff_t(sizeof(uint16_t)), rows, w, bs, sums.data());
+        for (int b = 0; b < blocks; b++) {
+            uint32_t want = 0;
+            for (int y = 0; y < rows; y++)
+                for (int x = b * bs; x < (b + 1) * bs; x++) want += plane[std::size_t(y * pitch + x)];
+            ASSERT_EQ(sums[std::size_t(b)], want) << "iteration " << iter << " block " << b << " bs " << bs << " rows "
+                                                  << rows << " width " << w;
+        }
+        ASSERT_EQ(sums[std::size_t(blocks)], 0xdeadbeefu) << "wrote past the whole blocks";
+    }
+}
+
 // block_average_inside<uint16_t> above is only right for 16-bit planes; 8-bit planes are
 // checked with their own reference.
 TEST_P(SimdEquivalence, FgcBlockSums8Bit) {
