@@ -178,10 +178,12 @@ void FgcPictureSynthesis::apply(const ResolvedFgc& params, const FrameView& src,
             grow(s.blocks, std::size_t(blocks_x) * 4);
             grow(s.narrow_blocks, std::size_t(blocks_x) * 4);
             grow(s.places, std::size_t(blocks_x) * 2);
-            // kBandRows rows of the stripe's width, 3 columns of padding, and one element
-            // before them (deblock_blend_block_rows_scratch: the grain width is at least the
-            // picture's, and a row of the stripe's blocks past it at most two columns more)
-            const std::size_t band = std::size_t(blocks_x * rb + 3) * std::size_t(kBandRows) + 1;
+            // kBandRows rows of the stripe's grain width and 3 columns of padding for the
+            // gathered bands, and what the 8-bit block-row kernel asks for its rows (the
+            // widest plane, grain to the end of its blocks)
+            const std::size_t band =
+                std::max(std::size_t(blocks_x * rb + 3) * std::size_t(kBandRows),
+                         simd::deblock_blend_block_rows_scratch(kBandRows, src.width, blocks_x * rb, block_size_));
             if (any_narrow) grow(s.narrow_band, band);
             if (any_wide) grow(s.band, band);
             if (!all_tables) {
