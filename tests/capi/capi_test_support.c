@@ -153,9 +153,15 @@ void fgc_test_params(fg_fgc_params* p) {
 }
 
 fg_status push_fgc_test_params(fg_context* ctx, const fg_picture_ids* picture) {
-    static fg_fgc_params p; /* 18 KB; the tests push from one thread at a time */
-    fgc_test_params(&p);
-    return fg_context_push_fgc_params(ctx, &p, FG_CODEC_HEVC, picture);
+    /* 18 KB, on the heap: test_concurrency makes contexts on several threads at once, and a
+       shared static set was being refilled by one while another pushed it (a vfgs context
+       once got log2_scale_factor 0 in a fresh-clone CI run) */
+    fg_fgc_params* p = malloc(sizeof *p);
+    if (!p) return FG_ERROR_OUT_OF_MEMORY;
+    fgc_test_params(p);
+    const fg_status st = fg_context_push_fgc_params(ctx, p, FG_CODEC_HEVC, picture);
+    free(p);
+    return st;
 }
 
 void av1_test_params(fg_av1_params* p, int grain_seed) {
