@@ -443,6 +443,35 @@ using D8 = hn::ScalableTag<uint8_t>;
 #include "av1/simd/blend_u8_avx512-inl.h"
 #include "av1/simd/blend_10bit_avx512-inl.h"
 
+// lut[a] and lut[b] for two vectors of byte indices, h0 the high nibble of a's first lane
+// (needs whole 16-byte blocks). The two share one three-row test (against that lane) and its
+// row loads; where that fails each vector takes LookUpVector's own test.
+HWY_INLINE void LookUpPair(hn::Vec<D8> a, hn::Vec<D8> b, int h0, const ShuffleRows<D8>& rows, hn::Vec<D8>& out_a,
+                           hn::Vec<D8>& out_b) {
+    const D8 du8;
+    const ShuffleRows<D8>* const tables[1] = {&rows};
+    const auto one = hn::Set(du8, uint8_t(1)), two = hn::Set(du8, uint8_t(2)), nibble = hn::Set(du8, uint8_t(15));
+    const auto first = hn::Set(du8, uint8_t(h0 - 1));  // wraps below 0
+    const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
+    const ThreeRows<D8> near = ThreeRows<D8>::At(rows.lut, h0, 15);
+    auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) { return near.Pick(hn::And(idx, nibble), rel, one, two); };
+    if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
+        out_a = pick(a, rel_a);
+        out_b = pick(b, rel_b);
+        return;
+    }
+    // The first vector may still lie within those rows (its own test is the same).
+    hn::Vec<D8> got[1];
+    if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel_a, two), hn::Zero(du8)))) {
+        out_a = pick(a, rel_a);
+    } else {
+        LookUpVector<1>(du8, a, tables, got);
+        out_a = got[0];
+    }
+    LookUpVector<1>(du8, b, tables, got);
+    out_b = got[0];
+}
+
 // out[k] = lut[index[k]] for k < count.
 HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, const ShuffleRows<D8>& rows) {
     const D8 du8;
@@ -450,31 +479,11 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
     int k = 0;
     if (n >= 16) {
         const ShuffleRows<D8>* const tables[1] = {&rows};
-        // Two vectors share one three-row test (against the first one's first lane) and
-        // its row loads; where that fails each vector takes LookUpVector's own test.
-        const auto one = hn::Set(du8, uint8_t(1)), two = hn::Set(du8, uint8_t(2)), nibble = hn::Set(du8, uint8_t(15));
         for (; k + 2 * n <= count; k += 2 * n) {
-            const auto a = hn::LoadU(du8, index + k), b = hn::LoadU(du8, index + k + n);
-            const int h0 = index[k] >> 4;
-            const auto first = hn::Set(du8, uint8_t(h0 - 1));  // wraps below 0
-            const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
-            const ThreeRows<D8> near = ThreeRows<D8>::At(rows.lut, h0, 15);
-            auto pick = [&](hn::Vec<D8> idx, hn::Vec<D8> rel) { return near.Pick(hn::And(idx, nibble), rel, one, two); };
-            if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du8)))) {
-                hn::StoreU(pick(a, rel_a), du8, out + k);
-                hn::StoreU(pick(b, rel_b), du8, out + k + n);
-                continue;
-            }
-            // The first vector may still lie within those rows (its own test is the same).
-            hn::Vec<D8> got[1];
-            if (hn::AllTrue(du8, hn::Eq(hn::SaturatedSub(rel_a, two), hn::Zero(du8)))) {
-                hn::StoreU(pick(a, rel_a), du8, out + k);
-            } else {
-                LookUpVector<1>(du8, a, tables, got);
-                hn::StoreU(got[0], du8, out + k);
-            }
-            LookUpVector<1>(du8, b, tables, got);
-            hn::StoreU(got[0], du8, out + k + n);
+            hn::Vec<D8> a, b;
+            LookUpPair(hn::LoadU(du8, index + k), hn::LoadU(du8, index + k + n), index[k] >> 4, rows, a, b);
+            hn::StoreU(a, du8, out + k);
+            hn::StoreU(b, du8, out + k + n);
         }
         for (; k + n <= count; k += n) {
             hn::Vec<D8> got[1];
@@ -484,6 +493,8 @@ HWY_INLINE void LookUpScaling8(const uint8_t* index, uint8_t* out, int count, co
     }
     for (; k < count; ++k) out[k] = rows.lut[index[k]];
 }
+
+#include "av1/simd/blend_u8_avx2-inl.h"
 
 // Above 8 bits the scale of sample i is scale_lut(i) (7.18.3.5: the 8-bit LUT at
 // i >> shift, interpolated towards its next entry by the low bits, shift = bit_depth - 8).
@@ -879,6 +890,51 @@ FG_AVX512_VBMI void BlendChromaRowsU8Avx512(const uint8_t* src, uint8_t* dst, co
 }
 #endif
 
+#if HWY_TARGET == HWY_AVX2
+// 64 samples per step with the indices, scales and sums in registers (blend_u8_avx2-inl.h);
+// the samples after the last whole 32 of a row go to the generic kernels, with the seams of
+// their blocks.
+void BlendLumaRowsU8Avx2(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                         int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the byte stores cannot alias it
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        BlendLumaRowU8Generic(src + r * rows.src_stride + x, dst + r * rows.dst_stride + x,
+                              avx2::RowFrom(row, x, seams), width - x, scaling, scaling_shift, min_value, max_value);
+    };
+    avx2::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA {
+        avx2::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA {
+            avx2::LumaRows<decltype(overlap)::value, decltype(clip)::value>(
+                src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
+        });
+    });
+}
+
+void BlendChromaRowsU8Avx2(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
+                           const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                           const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                           int bit_depth, int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the byte stores cannot alias it
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        BlendChromaRowU8Generic(src + r * rows.src_stride + x, dst + r * rows.dst_stride + x,
+                                luma + r * rows.luma_stride + (x << subsampling_x), luma_width - (x << subsampling_x),
+                                avx2::RowFrom(row, x, seams), width - x, subsampling_x, index, scaling, scaling_shift,
+                                bit_depth, min_value, max_value);
+    };
+    avx2::WithFlag(subsampling_x != 0, [&](auto subsampled) FG_INLINE_LAMBDA {
+        avx2::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA {
+            avx2::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA {
+                avx2::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA {
+                    avx2::ChromaRows<decltype(subsampled)::value, decltype(from_luma)::value,
+                                     decltype(overlap)::value, decltype(clip)::value>(
+                        src, dst, luma, luma_width, rows, first, width, index, scaling, scaling_shift, min_value,
+                        max_value, rest);
+                });
+            });
+        });
+    });
+}
+#endif
+
 // Row by row where no target form takes several (each row one call of the same target: no
 // dispatch per row).
 void BlendLumaRowsU8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise, int width,
@@ -886,6 +942,10 @@ void BlendLumaRowsU8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, co
 #if HWY_TARGET == HWY_AVX3
     if (noise.block_width == 32 && avx512::HasAvx512Vbmi())
         return BlendLumaRowsU8Avx512(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
+#endif
+#if HWY_TARGET == HWY_AVX2
+    if (noise.block_width == 32)
+        return BlendLumaRowsU8Avx2(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
 #endif
     BlockNoiseRow row = noise;
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
@@ -901,6 +961,11 @@ void BlendChromaRowsU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, in
     if (noise.block_width == (subsampling_x ? 16 : 32) && avx512::HasAvx512Vbmi())
         return BlendChromaRowsU8Avx512(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index, scaling,
                                        scaling_shift, bit_depth, min_value, max_value);
+#endif
+#if HWY_TARGET == HWY_AVX2
+    if (noise.block_width == (subsampling_x ? 16 : 32))
+        return BlendChromaRowsU8Avx2(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index, scaling,
+                                     scaling_shift, bit_depth, min_value, max_value);
 #endif
     BlockNoiseRow row = noise;
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)

@@ -1,0 +1,297 @@
+// 8-bit AV1 noise application (AV1 7.18.3.5) 32 samples per step, for the AVX2 target of
+// av1_kernels_hwy.cpp: twins of blend_luma_row / blend_chroma_row (grain_blending.hpp),
+// bit-equal to them; included inside that file's HWY_NAMESPACE, on the AVX2 pass only.
+//
+// Why a separate form: the generic kernels make a chunk's scaling indices, then its scales
+// (LookUpScaling8), then blend, each pass through a buffer, and the blend loads every sample
+// again. Here one step does all of it in registers, as the 512-bit VBMI form
+// (blend_u8_avx512-inl.h) does with 64 samples: the sample bytes are the luma indices, the
+// chroma indices are packed to bytes from the 16-bit lanes they are computed in, the LUT
+// is looked up by the same shuffle rows as the generic kernels (LookUpVector), and the scales
+// are unpacked from the looked-up bytes. AVX2 unpacks and packs within 128-bit lanes, so
+// luma works in unpack order (the 16-bit lanes hold samples 0-7 and 16-23, then 8-15 and
+// 24-31; the noise is loaded in that order and the final pack restores the samples' order),
+// and chroma in sample order (its indices come out of the co-sited luma so; one permute
+// restores the output).
+#if HWY_TARGET == HWY_AVX2
+
+namespace avx2 {
+
+// How a row's blocks overlap horizontally (7.18.3.5, overlap_flag): not at all, by seams the
+// caller made (BlockNoiseRow::seams), or faded here (BlockNoiseRow::fade).
+enum class Overlap { kNone, kGivenSeams, kFade };
+
+// What a row's steps share: the LUT's shuffle rows, the q15 shift of the scales, the clip and
+// the overlap fade's weights (as FadeConstantsOf, in 32-bit pairs).
+struct StepConstants {
+    ShuffleRows<D8> rows;
+    __m128i up_shift;
+    __m256i min_value, max_value;
+    __m256i w_old, w_new, round, gmin, gmax;
+};
+
+inline StepConstants MakeStepConstants(const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                                       const BlockNoiseRow& row) {
+    auto pair = [](int16_t a, int16_t b) { return int32_t(uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16); };
+    return {ShuffleRows<D8>(scaling.table8().data(), scaling.lut8_chain()),
+            _mm_cvtsi32_si128(15 - scaling_shift),
+            _mm256_set1_epi8(char(min_value)),
+            _mm256_set1_epi8(char(max_value)),
+            _mm256_set1_epi32(pair(row.fade_old[0], row.fade_old[1])),
+            _mm256_set1_epi32(pair(row.fade_new[0], row.fade_new[1])),
+            _mm256_set1_epi16(1 << 10),
+            _mm256_set1_epi16(row.gmin),
+            _mm256_set1_epi16(row.gmax)};
+}
+
+// `noise` with its 32-bit lane 0 (a block's first two samples) replaced by the fade with the
+// block to the left, whose row starts at `left`: clamp((left * fade_old[k] + own * fade_new[k]
+// + 16) >> 5). The sums fit 16-bit lanes at 8 bits (|noise| <= 128, weights summing to at most
+// 45); Round2 by 5 is a rounding high multiply by 1 << 10.
+HWY_INLINE __m256i FadeFirstPair(__m256i noise, const int16_t* left, int block_width, const StepConstants& c) {
+    int32_t pair;
+    std::memcpy(&pair, left + block_width, sizeof pair);
+    const __m256i sum = _mm256_add_epi16(_mm256_mullo_epi16(_mm256_set1_epi32(pair), c.w_old),
+                                         _mm256_mullo_epi16(noise, c.w_new));
+    const __m256i faded = _mm256_min_epi16(_mm256_max_epi16(_mm256_mulhrs_epi16(sum, c.round), c.gmin), c.gmax);
+    return _mm256_blend_epi32(noise, faded, 0x01);
+}
+// `noise` with its 32-bit lane 0 replaced by a given seam.
+HWY_INLINE __m256i SeamFirstPair(__m256i noise, uint32_t seam) {
+    return _mm256_blend_epi32(noise, _mm256_set1_epi32(int32_t(seam)), 0x01);
+}
+
+// The block starting in lane 0 of `noise`, overlapped with its left neighbour: block b of the
+// row, x its first sample.
+template <Overlap kOverlap, int kBlockWidth>
+HWY_INLINE __m256i OverlapFirstPair(__m256i noise, const BlockNoiseRow& row, int b, int x, const StepConstants& c) {
+    if constexpr (kOverlap == Overlap::kGivenSeams) return SeamFirstPair(noise, row.seams[b]);
+    if constexpr (kOverlap == Overlap::kFade) {
+        if (x > 0) return FadeFirstPair(noise, row.block(b - 1), kBlockWidth, c);
+    }
+    return noise;
+}
+
+HWY_INLINE __m128i Load128(const void* p) { return _mm_loadu_si128(static_cast<const __m128i*>(p)); }
+HWY_INLINE __m256i Load256(const void* p) { return _mm256_loadu_si256(static_cast<const __m256i*>(p)); }
+
+// clip(src + Round2(scale * noise, shift)) of 32 samples, `scale` the looked-up bytes of
+// indices packed (packus) from the 16-bit lanes that src, noise and the result use:
+// unpacking them gives back that order. In unpack order the final pack restores the
+// samples' order; in sample order one permute does.
+template <bool kClip, bool kUnpackOrder>
+HWY_INLINE __m256i AddScaledNoise32(const StepConstants& c, __m256i scale, __m256i src_low, __m256i src_high,
+                                    __m256i noise_low, __m256i noise_high) {
+    const __m256i zero = _mm256_setzero_si256();
+    const __m256i scale_low = _mm256_sll_epi16(_mm256_unpacklo_epi8(scale, zero), c.up_shift);
+    const __m256i scale_high = _mm256_sll_epi16(_mm256_unpackhi_epi8(scale, zero), c.up_shift);
+    const __m256i low = _mm256_add_epi16(src_low, _mm256_mulhrs_epi16(scale_low, noise_low));
+    const __m256i high = _mm256_add_epi16(src_high, _mm256_mulhrs_epi16(scale_high, noise_high));
+    __m256i out = _mm256_packus_epi16(low, high);  // 0..255 first: no clip range lies outside it
+    if constexpr (!kUnpackOrder) out = _mm256_permute4x64_epi64(out, 0xD8);
+    if constexpr (kClip) out = _mm256_min_epu8(_mm256_max_epu8(out, c.min_value), c.max_value);
+    return out;
+}
+
+// The scales of one or two vectors of 32 byte indices: two share LookUpPair's three-row test
+// (decoded pictures are locally smooth), one takes LookUpVector's.
+HWY_INLINE __m256i LookUp32(const StepConstants& c, __m256i index) {
+    hn::Vec<D8> scale[1];
+    const ShuffleRows<D8>* const tables[1] = {&c.rows};
+    LookUpVector<1>(D8(), hn::Vec<D8>{index}, tables, scale);
+    return scale[0].raw;
+}
+HWY_INLINE void LookUp64(const StepConstants& c, __m256i index_a, __m256i index_b, __m256i& scale_a,
+                         __m256i& scale_b) {
+    hn::Vec<D8> a, b;
+    LookUpPair(hn::Vec<D8>{index_a}, hn::Vec<D8>{index_b}, (_mm256_cvtsi256_si32(index_a) & 0xFF) >> 4, c.rows, a, b);
+    scale_a = a.raw;
+    scale_b = b.raw;
+}
+
+// Drives a row: step(x, std::integral_constant<int, 64 or 32>) for every whole 64 samples up
+// to `vector_end` and one 32 after them where it fits, then tail(x, seams of x's block and
+// on, or null) once for the samples after them, if any (faded here when the steps fade them).
+template <int kBlockWidth, Overlap kOverlap, class Step, class Tail>
+HWY_INLINE void ForEachStep(const BlockNoiseRow& row, int width, int vector_end, Step&& step, Tail&& tail) {
+    int x = 0;
+    for (; x + 64 <= vector_end; x += 64) step(x, std::integral_constant<int, 64>());
+    if (x + 32 <= vector_end) {
+        step(x, std::integral_constant<int, 32>());
+        x += 32;
+    }
+    if (x >= width) return;
+    uint32_t faded[32 / 16 + 1];
+    const uint32_t* seams = nullptr;
+    if constexpr (kOverlap == Overlap::kGivenSeams) seams = row.seams + x / kBlockWidth;
+    if constexpr (kOverlap == Overlap::kFade) {
+        for (int b = x / kBlockWidth, k = 0; b * kBlockWidth < width; ++b, ++k)
+            faded[k] = uint32_t(uint16_t(row.at(b * kBlockWidth))) | uint32_t(uint16_t(row.at(b * kBlockWidth + 1))) << 16;
+        seams = faded;
+    }
+    tail(x, seams);
+}
+
+// The row from x on as the generic kernels take it: its blocks from x's, their seams given.
+inline BlockNoiseRow RowFrom(const BlockNoiseRow& row, int x, const uint32_t* seams) {
+    BlockNoiseRow tail = row;
+    tail.blocks = row.blocks + x / row.block_width;
+    tail.seams = seams;
+    tail.fade = false;
+    return tail;
+}
+
+// Twin of blend_luma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, row, x, seams)`
+// blends samples [x, width) of row r the generic way. Unpack order: the samples themselves
+// are the indices, and loading the noise in that order costs what a lane-restoring permute
+// would.
+template <Overlap kOverlap, bool kClip, class Rest>
+void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& first_row, int width,
+              const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value, Rest&& rest) {
+    const StepConstants c = MakeStepConstants(scaling, scaling_shift, min_value, max_value, first_row);
+    const __m256i zero = _mm256_setzero_si256();
+    BlockNoiseRow row = first_row;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
+        const uint8_t* s = src + r * rows.src_stride;
+        uint8_t* d = dst + r * rows.dst_stride;
+        // block x / 32's noise in unpack order (samples 0-7 and 16-23, then 8-15 and 24-31)
+        auto blend_block = [&](int x, __m256i v, __m256i scale) FG_INLINE_LAMBDA {
+            const int b = x / 32;
+            const int16_t* p = row.block(b);
+            __m256i noise_low = _mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p)), Load128(p + 16), 1);
+            const __m256i noise_high =
+                _mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p + 8)), Load128(p + 24), 1);
+            noise_low = OverlapFirstPair<kOverlap, 32>(noise_low, row, b, x, c);
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x),
+                                AddScaledNoise32<kClip, true>(c, scale, _mm256_unpacklo_epi8(v, zero),
+                                                              _mm256_unpackhi_epi8(v, zero), noise_low, noise_high));
+        };
+        ForEachStep<32, kOverlap>(
+            row, width, width,
+            [&](int x, auto samples) FG_INLINE_LAMBDA {
+                const __m256i v = Load256(s + x);
+                if constexpr (decltype(samples)::value == 64) {
+                    const __m256i w = Load256(s + x + 32);  // before the first store: in place
+                    __m256i scale_v, scale_w;
+                    LookUp64(c, v, w, scale_v, scale_w);
+                    blend_block(x, v, scale_v);
+                    blend_block(x + 32, w, scale_w);
+                } else {
+                    blend_block(x, v, LookUp32(c, v));
+                }
+            },
+            [&](int x, const uint32_t* seams) { rest(r, row, x, seams); });
+    }
+}
+
+// The 32 chroma scaling indices (`merged`, chroma_scaling_index) from chroma x on, in sample
+// order in 16-bit lanes (samples 0-15, 16-31); src_low / src_high are the chroma samples so.
+template <bool kSubsampled, bool kFromLuma>
+HWY_INLINE void ChromaIndices32(const uint8_t* luma, int x, __m256i src_low, __m256i src_high, __m256i mults,
+                                __m256i offset, __m256i& low, __m256i& high) {
+    if constexpr (kSubsampled) {
+        // pair sums by a multiply-add with ones; the rounding average with 0 is
+        // (sum + 1) >> 1, co_sited_luma's
+        const __m256i ones = _mm256_set1_epi8(1), zero = _mm256_setzero_si256();
+        low = _mm256_avg_epu16(_mm256_maddubs_epi16(Load256(luma + 2 * x), ones), zero);
+        high = _mm256_avg_epu16(_mm256_maddubs_epi16(Load256(luma + 2 * x + 32), ones), zero);
+    } else {
+        low = _mm256_cvtepu8_epi16(Load128(luma + x));
+        high = _mm256_cvtepu8_epi16(Load128(luma + x + 16));
+    }
+    if constexpr (!kFromLuma) {
+        // (luma, chroma) as the two bytes of each 16-bit lane, one unsigned x signed byte
+        // multiply-add: its int16 saturation only happens where the index is clipped anyway
+        // (32767 >> 6 = 511 and -32768 >> 6 = -512 stay outside 0..255 after any offset in
+        // -256..255), and the narrowing pack's unsigned saturation is the clip.
+        auto merged = [&](__m256i avg, __m256i chroma) FG_INLINE_LAMBDA {
+            const __m256i pairs = _mm256_or_si256(avg, _mm256_slli_epi16(chroma, 8));
+            return _mm256_add_epi16(_mm256_srai_epi16(_mm256_maddubs_epi16(pairs, mults), 6), offset);
+        };
+        low = merged(low, src_low);
+        high = merged(high, src_high);
+    }
+}
+
+// Twin of blend_chroma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, row, x, seams)`
+// blends samples [x, width) of row r the generic way. Sample order (see the top).
+template <bool kSubsampled, bool kFromLuma, Overlap kOverlap, bool kClip, class Rest>
+void ChromaRows(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const PlaneRows& rows,
+                const BlockNoiseRow& first_row, int width, const ChromaScalingIndex& index,
+                const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value, Rest&& rest) {
+    const StepConstants c = MakeStepConstants(scaling, scaling_shift, min_value, max_value, first_row);
+    const __m256i mults =
+        _mm256_set1_epi16(int16_t(uint16_t(uint8_t(index.luma_mult)) | uint16_t(uint8_t(index.mult)) << 8));
+    const __m256i offset = _mm256_set1_epi16(int16_t(index.offset));
+    // The last column of an odd-width subsampled row pairs the last luma sample with itself.
+    const int vector_end = kSubsampled && (luma_width & 1) ? width - 1 : width;
+    constexpr int bw = kSubsampled ? 16 : 32;
+    BlockNoiseRow row = first_row;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
+        const uint8_t* s = src + r * rows.src_stride;
+        const uint8_t* l = luma + r * rows.luma_stride;
+        uint8_t* d = dst + r * rows.dst_stride;
+        // samples [x, x + 32): their source in sample order and their packed indices
+        struct Samples {
+            __m256i low, high, index;
+        };
+        auto samples_at = [&](int x) FG_INLINE_LAMBDA {
+            Samples v{_mm256_cvtepu8_epi16(Load128(s + x)), _mm256_cvtepu8_epi16(Load128(s + x + 16)), {}};
+            __m256i index_low, index_high;
+            ChromaIndices32<kSubsampled, kFromLuma>(l, x, v.low, v.high, mults, offset, index_low, index_high);
+            v.index = _mm256_packus_epi16(index_low, index_high);
+            return v;
+        };
+        auto blend = [&](int x, const Samples& v, __m256i scale) FG_INLINE_LAMBDA {
+            const int b = x / bw;
+            __m256i noise_low, noise_high;
+            if constexpr (kSubsampled) {
+                noise_low = OverlapFirstPair<kOverlap, bw>(Load256(row.block(b)), row, b, x, c);
+                noise_high = OverlapFirstPair<kOverlap, bw>(Load256(row.block(b + 1)), row, b + 1, x + bw, c);
+            } else {
+                noise_low = OverlapFirstPair<kOverlap, bw>(Load256(row.block(b)), row, b, x, c);
+                noise_high = Load256(row.block(b) + 16);
+            }
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x),
+                                AddScaledNoise32<kClip, false>(c, scale, v.low, v.high, noise_low, noise_high));
+        };
+        ForEachStep<bw, kOverlap>(
+            row, width, vector_end,
+            [&](int x, auto count) FG_INLINE_LAMBDA {
+                const Samples v = samples_at(x);
+                if constexpr (decltype(count)::value == 64) {
+                    const Samples w = samples_at(x + 32);  // before the first store: in place
+                    __m256i scale_v, scale_w;
+                    LookUp64(c, v.index, w.index, scale_v, scale_w);
+                    blend(x, v, scale_v);
+                    blend(x + 32, w, scale_w);
+                } else {
+                    blend(x, v, LookUp32(c, v.index));
+                }
+            },
+            [&](int x, const uint32_t* seams) { rest(r, row, x, seams); });
+    }
+}
+
+// The template arguments of LumaRows / ChromaRows from run-time flags: each combination is
+// its own loop, so that no step tests them.
+template <class F>
+HWY_INLINE void WithFlag(bool flag, F&& f) {
+    if (flag)
+        f(std::true_type());
+    else
+        f(std::false_type());
+}
+template <class F>
+HWY_INLINE void WithOverlap(const BlockNoiseRow& row, F&& f) {
+    if (row.seams)
+        f(std::integral_constant<Overlap, Overlap::kGivenSeams>());
+    else if (row.fade)
+        f(std::integral_constant<Overlap, Overlap::kFade>());
+    else
+        f(std::integral_constant<Overlap, Overlap::kNone>());
+}
+
+}  // namespace avx2
+
+#endif  // HWY_TARGET == HWY_AVX2
