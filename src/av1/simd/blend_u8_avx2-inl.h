@@ -72,6 +72,40 @@ HWY_INLINE __m256i OverlapFirstPair(__m256i noise, const BlockNoiseRow& row, int
     return noise;
 }
 
+// The first pairs of kBlocks (2 or 4) blocks, each in 32-bit lane 0 of its noise vector,
+// overlapped with their left neighbours (whose rows start at left[k]) in one 128-bit fade,
+// as FadeFirstPair: the fade's operations once for a step instead of once per block. Block 0
+// keeps its own where it is the row's first (`keep_first`).
+template <int kBlocks>
+HWY_INLINE void FadeFirstPairs(__m256i* const (&noise)[kBlocks], const int16_t* const (&left)[kBlocks],
+                               int block_width, bool keep_first, const StepConstants& c) {
+    __m128i own = _mm256_castsi256_si128(_mm256_unpacklo_epi32(*noise[0], *noise[1]));  // dwords: block 0, 1
+    if constexpr (kBlocks == 4)
+        own = _mm_unpacklo_epi64(own, _mm256_castsi256_si128(_mm256_unpacklo_epi32(*noise[2], *noise[3])));
+    int32_t pair;
+    std::memcpy(&pair, left[0] + block_width, sizeof pair);
+    __m128i lefts = _mm_cvtsi32_si128(pair);
+    std::memcpy(&pair, left[1] + block_width, sizeof pair);
+    lefts = _mm_insert_epi32(lefts, pair, 1);
+    if constexpr (kBlocks == 4) {
+        std::memcpy(&pair, left[2] + block_width, sizeof pair);
+        lefts = _mm_insert_epi32(lefts, pair, 2);
+        std::memcpy(&pair, left[3] + block_width, sizeof pair);
+        lefts = _mm_insert_epi32(lefts, pair, 3);
+    }
+    const __m128i sum = _mm_add_epi16(_mm_mullo_epi16(lefts, _mm256_castsi256_si128(c.w_old)),
+                                      _mm_mullo_epi16(own, _mm256_castsi256_si128(c.w_new)));
+    __m128i faded = _mm_mulhrs_epi16(sum, _mm256_castsi256_si128(c.round));
+    faded = _mm_min_epi16(_mm_max_epi16(faded, _mm256_castsi256_si128(c.gmin)), _mm256_castsi256_si128(c.gmax));
+    if (keep_first) faded = _mm_blend_epi32(faded, own, 0x1);
+    *noise[0] = _mm256_blend_epi32(*noise[0], _mm256_castsi128_si256(faded), 0x01);
+    *noise[1] = _mm256_blend_epi32(*noise[1], _mm256_castsi128_si256(_mm_shuffle_epi32(faded, 0x55)), 0x01);
+    if constexpr (kBlocks == 4) {
+        *noise[2] = _mm256_blend_epi32(*noise[2], _mm256_castsi128_si256(_mm_shuffle_epi32(faded, 0xAA)), 0x01);
+        *noise[3] = _mm256_blend_epi32(*noise[3], _mm256_castsi128_si256(_mm_shuffle_epi32(faded, 0xFF)), 0x01);
+    }
+}
+
 HWY_INLINE __m128i Load128(const void* p) { return _mm_loadu_si128(static_cast<const __m128i*>(p)); }
 HWY_INLINE __m256i Load256(const void* p) { return _mm256_loadu_si256(static_cast<const __m256i*>(p)); }
 
@@ -110,41 +144,22 @@ HWY_INLINE void LookUp64(const StepConstants& c, __m256i index_a, __m256i index_
 }
 
 // Drives a row: step(x, std::integral_constant<int, 64 or 32>) for every whole 64 samples up
-// to `vector_end` and one 32 after them where it fits, then tail(x, seams of x's block and
-// on, or null) once for the samples after them, if any (faded here when the steps fade them).
-template <int kBlockWidth, Overlap kOverlap, class Step, class Tail>
-HWY_INLINE void ForEachStep(const BlockNoiseRow& row, int width, int vector_end, Step&& step, Tail&& tail) {
+// to `vector_end` and one 32 after them where it fits, then tail(x) once for the samples
+// after them, if any.
+template <class Step, class Tail>
+HWY_INLINE void ForEachStep(int width, int vector_end, Step&& step, Tail&& tail) {
     int x = 0;
     for (; x + 64 <= vector_end; x += 64) step(x, std::integral_constant<int, 64>());
     if (x + 32 <= vector_end) {
         step(x, std::integral_constant<int, 32>());
         x += 32;
     }
-    if (x >= width) return;
-    uint32_t faded[32 / 16 + 1];
-    const uint32_t* seams = nullptr;
-    if constexpr (kOverlap == Overlap::kGivenSeams) seams = row.seams + x / kBlockWidth;
-    if constexpr (kOverlap == Overlap::kFade) {
-        for (int b = x / kBlockWidth, k = 0; b * kBlockWidth < width; ++b, ++k)
-            faded[k] = uint32_t(uint16_t(row.at(b * kBlockWidth))) | uint32_t(uint16_t(row.at(b * kBlockWidth + 1))) << 16;
-        seams = faded;
-    }
-    tail(x, seams);
+    if (x < width) tail(x);
 }
 
-// The row from x on as the generic kernels take it: its blocks from x's, their seams given.
-inline BlockNoiseRow RowFrom(const BlockNoiseRow& row, int x, const uint32_t* seams) {
-    BlockNoiseRow tail = row;
-    tail.blocks = row.blocks + x / row.block_width;
-    tail.seams = seams;
-    tail.fade = false;
-    return tail;
-}
-
-// Twin of blend_luma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, row, x, seams)`
-// blends samples [x, width) of row r the generic way. Unpack order: the samples themselves
-// are the indices, and loading the noise in that order costs what a lane-restoring permute
-// would.
+// blend_luma_row's 8-bit AVX2 form over rows.count rows, in unpack order (the sample bytes
+// are the indices; loading the noise so costs what a lane-restoring permute would);
+// `rest(r, row, x)` takes each row's samples after the last whole 32.
 template <Overlap kOverlap, bool kClip, class Rest>
 void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& first_row, int width,
               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value, Rest&& rest) {
@@ -154,33 +169,47 @@ void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const Blo
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
         const uint8_t* s = src + r * rows.src_stride;
         uint8_t* d = dst + r * rows.dst_stride;
-        // block x / 32's noise in unpack order (samples 0-7 and 16-23, then 8-15 and 24-31)
-        auto blend_block = [&](int x, __m256i v, __m256i scale) FG_INLINE_LAMBDA {
-            const int b = x / 32;
-            const int16_t* p = row.block(b);
-            __m256i noise_low = _mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p)), Load128(p + 16), 1);
-            const __m256i noise_high =
-                _mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p + 8)), Load128(p + 24), 1);
-            noise_low = OverlapFirstPair<kOverlap, 32>(noise_low, row, b, x, c);
+        // block x / 32's noise in unpack order (samples 0-7 and 16-23, then 8-15 and 24-31), its
+        // first pair not yet overlapped
+        struct Noise {
+            __m256i low, high;
+        };
+        auto noise_at = [&](int x) FG_INLINE_LAMBDA {
+            const int16_t* p = row.block(x / 32);
+            return Noise{_mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p)), Load128(p + 16), 1),
+                         _mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p + 8)), Load128(p + 24), 1)};
+        };
+        auto blend_block = [&](int x, __m256i v, __m256i scale, const Noise& noise) FG_INLINE_LAMBDA {
             _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x),
                                 AddScaledNoise32<kClip, true>(c, scale, _mm256_unpacklo_epi8(v, zero),
-                                                              _mm256_unpackhi_epi8(v, zero), noise_low, noise_high));
+                                                              _mm256_unpackhi_epi8(v, zero), noise.low, noise.high));
         };
-        ForEachStep<32, kOverlap>(
-            row, width, width,
+        ForEachStep(
+            width, width,
             [&](int x, auto samples) FG_INLINE_LAMBDA {
                 const __m256i v = Load256(s + x);
+                const int b = x / 32;
+                Noise nv = noise_at(x);
                 if constexpr (decltype(samples)::value == 64) {
                     const __m256i w = Load256(s + x + 32);  // before the first store: in place
+                    Noise nw = noise_at(x + 32);
+                    if constexpr (kOverlap == Overlap::kFade) {
+                        FadeFirstPairs<2>({&nv.low, &nw.low}, {row.block(b > 0 ? b - 1 : 0), row.block(b)}, 32, x == 0,
+                                          c);
+                    } else {
+                        nv.low = OverlapFirstPair<kOverlap, 32>(nv.low, row, b, x, c);
+                        nw.low = OverlapFirstPair<kOverlap, 32>(nw.low, row, b + 1, x + 32, c);
+                    }
                     __m256i scale_v, scale_w;
                     LookUp64(c, v, w, scale_v, scale_w);
-                    blend_block(x, v, scale_v);
-                    blend_block(x + 32, w, scale_w);
+                    blend_block(x, v, scale_v, nv);
+                    blend_block(x + 32, w, scale_w, nw);
                 } else {
-                    blend_block(x, v, LookUp32(c, v));
+                    nv.low = OverlapFirstPair<kOverlap, 32>(nv.low, row, b, x, c);
+                    blend_block(x, v, LookUp32(c, v), nv);
                 }
             },
-            [&](int x, const uint32_t* seams) { rest(r, row, x, seams); });
+            [&](int x) { rest(r, row, x); });
     }
 }
 
@@ -200,10 +229,8 @@ HWY_INLINE void ChromaIndices32(const uint8_t* luma, int x, __m256i src_low, __m
         high = _mm256_cvtepu8_epi16(Load128(luma + x + 16));
     }
     if constexpr (!kFromLuma) {
-        // (luma, chroma) as the two bytes of each 16-bit lane, one unsigned x signed byte
-        // multiply-add: its int16 saturation only happens where the index is clipped anyway
-        // (32767 >> 6 = 511 and -32768 >> 6 = -512 stay outside 0..255 after any offset in
-        // -256..255), and the narrowing pack's unsigned saturation is the clip.
+        // one pmaddubsw of (luma, chroma) byte pairs, exact wherever the index is not
+        // clipped, as ChromaIndices64 argues (blend_u8_avx512-inl.h)
         auto merged = [&](__m256i avg, __m256i chroma) FG_INLINE_LAMBDA {
             const __m256i pairs = _mm256_or_si256(avg, _mm256_slli_epi16(chroma, 8));
             return _mm256_add_epi16(_mm256_srai_epi16(_mm256_maddubs_epi16(pairs, mults), 6), offset);
@@ -213,8 +240,8 @@ HWY_INLINE void ChromaIndices32(const uint8_t* luma, int x, __m256i src_low, __m
     }
 }
 
-// Twin of blend_chroma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, row, x, seams)`
-// blends samples [x, width) of row r the generic way. Sample order (see the top).
+// blend_chroma_row's 8-bit AVX2 form over rows.count rows, in sample order (see the top);
+// `rest(r, row, x)` takes each row's samples after the last whole 32.
 template <bool kSubsampled, bool kFromLuma, Overlap kOverlap, bool kClip, class Rest>
 void ChromaRows(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width, const PlaneRows& rows,
                 const BlockNoiseRow& first_row, int width, const ChromaScalingIndex& index,
@@ -242,34 +269,58 @@ void ChromaRows(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_
             v.index = _mm256_packus_epi16(index_low, index_high);
             return v;
         };
-        auto blend = [&](int x, const Samples& v, __m256i scale) FG_INLINE_LAMBDA {
-            const int b = x / bw;
-            __m256i noise_low, noise_high;
-            if constexpr (kSubsampled) {
-                noise_low = OverlapFirstPair<kOverlap, bw>(Load256(row.block(b)), row, b, x, c);
-                noise_high = OverlapFirstPair<kOverlap, bw>(Load256(row.block(b + 1)), row, b + 1, x + bw, c);
-            } else {
-                noise_low = OverlapFirstPair<kOverlap, bw>(Load256(row.block(b)), row, b, x, c);
-                noise_high = Load256(row.block(b) + 16);
-            }
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x),
-                                AddScaledNoise32<kClip, false>(c, scale, v.low, v.high, noise_low, noise_high));
+        // the noise of samples [x, x + 32) in sample order, the first pairs of its blocks not
+        // yet overlapped
+        struct Noise {
+            __m256i low, high;
         };
-        ForEachStep<bw, kOverlap>(
-            row, width, vector_end,
+        auto noise_at = [&](int x) FG_INLINE_LAMBDA {
+            const int b = x / bw;
+            return kSubsampled ? Noise{Load256(row.block(b)), Load256(row.block(b + 1))}
+                               : Noise{Load256(row.block(b)), Load256(row.block(b) + 16)};
+        };
+        // The first pairs of the blocks of samples [x, x + 32): one by one.
+        auto overlap = [&](int x, Noise& n) FG_INLINE_LAMBDA {
+            const int b = x / bw;
+            n.low = OverlapFirstPair<kOverlap, bw>(n.low, row, b, x, c);
+            if constexpr (kSubsampled) n.high = OverlapFirstPair<kOverlap, bw>(n.high, row, b + 1, x + bw, c);
+        };
+        auto blend = [&](int x, const Samples& v, __m256i scale, const Noise& n) FG_INLINE_LAMBDA {
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x),
+                                AddScaledNoise32<kClip, false>(c, scale, v.low, v.high, n.low, n.high));
+        };
+        ForEachStep(
+            width, vector_end,
             [&](int x, auto count) FG_INLINE_LAMBDA {
                 const Samples v = samples_at(x);
+                Noise nv = noise_at(x);
                 if constexpr (decltype(count)::value == 64) {
                     const Samples w = samples_at(x + 32);  // before the first store: in place
+                    Noise nw = noise_at(x + 32);
+                    if constexpr (kOverlap == Overlap::kFade) {
+                        const int b = x / bw;
+                        if constexpr (kSubsampled)
+                            FadeFirstPairs<4>({&nv.low, &nv.high, &nw.low, &nw.high},
+                                              {row.block(b > 0 ? b - 1 : 0), row.block(b), row.block(b + 1),
+                                               row.block(b + 2)},
+                                              bw, x == 0, c);
+                        else
+                            FadeFirstPairs<2>({&nv.low, &nw.low}, {row.block(b > 0 ? b - 1 : 0), row.block(b)}, bw,
+                                              x == 0, c);
+                    } else {
+                        overlap(x, nv);
+                        overlap(x + 32, nw);
+                    }
                     __m256i scale_v, scale_w;
                     LookUp64(c, v.index, w.index, scale_v, scale_w);
-                    blend(x, v, scale_v);
-                    blend(x + 32, w, scale_w);
+                    blend(x, v, scale_v, nv);
+                    blend(x + 32, w, scale_w, nw);
                 } else {
-                    blend(x, v, LookUp32(c, v.index));
+                    overlap(x, nv);
+                    blend(x, v, LookUp32(c, v.index), nv);
                 }
             },
-            [&](int x, const uint32_t* seams) { rest(r, row, x, seams); });
+            [&](int x) { rest(r, row, x); });
     }
 }
 
