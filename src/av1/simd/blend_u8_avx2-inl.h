@@ -1,18 +1,19 @@
-// 8-bit AV1 noise application (AV1 7.18.3.5) 32 samples per step, for the AVX2 target of
+// 8-bit AV1 noise application (AV1 7.18.3.5) 64 samples per step, for the AVX2 target of
 // av1_kernels_hwy.cpp: twins of blend_luma_row / blend_chroma_row (grain_blending.hpp),
 // bit-equal to them; included inside that file's HWY_NAMESPACE, on the AVX2 pass only.
 //
 // Why a separate form: the generic kernels make a chunk's scaling indices, then its scales
 // (LookUpScaling8), then blend, each pass through a buffer, and the blend loads every sample
 // again. Here one step does all of it in registers, as the 512-bit VBMI form
-// (blend_u8_avx512-inl.h) does with 64 samples: the sample bytes are the luma indices, the
-// chroma indices are packed to bytes from the 16-bit lanes they are computed in, the LUT
-// is looked up by the same shuffle rows as the generic kernels (LookUpVector), and the scales
-// are unpacked from the looked-up bytes. AVX2 unpacks and packs within 128-bit lanes, so
-// luma works in unpack order (the 16-bit lanes hold samples 0-7 and 16-23, then 8-15 and
-// 24-31; the noise is loaded in that order and the final pack restores the samples' order),
-// and chroma in sample order (its indices come out of the co-sited luma so; one permute
-// restores the output).
+// (blend_u8_avx512-inl.h) does: the sample bytes are the luma indices, the chroma indices
+// are packed to bytes from the 16-bit lanes they are computed in, the LUT is looked up by
+// the generic kernels' shuffle rows (two 32-byte vectors sharing one three-row test,
+// LookUpPair), and the scales are unpacked from the looked-up bytes. AVX2 unpacks and packs
+// within 128-bit lanes, so luma works in unpack order (the 16-bit lanes hold samples 0-7 and
+// 16-23, then 8-15 and 24-31; the noise is loaded in that order and the final pack restores
+// the samples' order), and chroma in sample order (its indices come out of the co-sited luma
+// so; one permute restores the output). The horizontal overlap of a step's blocks is faded
+// in one 128-bit vector of their first pairs (FadeFirstPairs).
 #if HWY_TARGET == HWY_AVX2
 
 namespace avx2 {
