@@ -120,57 +120,13 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
             hn::StoreU(hn::BitCast(dp, v), dp, dst + x + k);
     };
     const int bw = row.block_width;
-#if HWY_TARGET == HWY_AVX2
-    // 8 bits on AVX2: two vectors at a time (a luma block, or two 4:2:0 chroma blocks), their
-    // sums packed with unsigned saturation into one 32-byte vector and clipped there as
-    // bytes (saturating to 0..255 first changes no clip to a range inside it): half the
-    // clip operations and one narrowing shuffle per pair instead of one per vector. Highway
-    // 1.0 has no two-vector 16-to-8-bit narrowing, hence the intrinsics.
-    if constexpr (sizeof(Pixel) == 1) {
-        if (n == 16 && (bw == 2 * n || bw == n)) {
-            const __m256i min8 = _mm256_set1_epi8(char(min_value)), max8 = _mm256_set1_epi8(char(max_value));
-            auto sum = [&](int k, hn::Vec<D16> noise) FG_INLINE_LAMBDA {
-                const auto orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
-                return hn::Add(orig, hn::MulFixedPoint15(scale_at(k), noise));
-            };
-            int k = 0, b = x / bw;
-            // one loop per block width and form of the overlap, so that no block tests them
-            WithFirstOfBlock(row, fade, [&](auto first_of_block) FG_INLINE_LAMBDA {
-                auto pairs = [&](auto one_block) FG_INLINE_LAMBDA {
-                    for (; k + 2 * n <= count; k += 2 * n) {
-                        hn::Vec<D16> s0, s1;
-                        if constexpr (decltype(one_block)::value) {
-                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.block(b))));
-                            s1 = sum(k + n, hn::LoadU(d16, row.block(b) + n));
-                            b += 1;
-                        } else {
-                            s0 = sum(k, first_of_block(b, hn::LoadU(d16, row.block(b))));
-                            s1 = sum(k + n, first_of_block(b + 1, hn::LoadU(d16, row.block(b + 1))));
-                            b += 2;
-                        }
-                        __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi16(s0.raw, s1.raw), 0xD8);
-                        packed = _mm256_min_epu8(_mm256_max_epu8(packed, min8), max8);
-                        _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + x + k), packed);
-                    }
-                };
-                if (bw == 2 * n)
-                    pairs(std::true_type());
-                else
-                    pairs(std::false_type());
-            });
-            if (k < count) blend(k, BlockNoiseAt(d16, row, b, 0, fade));  // one vector left: a block's first
-            return;
-        }
-    }
-#endif
     int k = 0, b = x / bw;
     // Whole blocks of whole vectors (every vector target: blocks of 16 or 32 samples), with
     // the vectors per block and the overlap's form fixed for the loop, so that a block costs
-    // its vectors and no per-block tests. (Not compiled where the 8-bit AVX2 form above
-    // always returns: there its mere presence made that form 8 % slower before the lambdas
-    // were forced inline, and no faster after.)
-    constexpr bool kWholeBlocks = !(HWY_TARGET == HWY_AVX2 && sizeof(Pixel) == 1);
-    if constexpr (kWholeBlocks) if (n >= 2 && bw % n == 0) {
+    // its vectors and no per-block tests. (8-bit rows on AVX2 come here only for their last
+    // samples after blend_u8_avx2-inl.h's steps, or for block widths the synthesis does not
+    // make at 8 bits.)
+    if (n >= 2 && bw % n == 0) {
         auto whole_blocks = [&](auto vectors, auto first_of_block) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(vectors)::value;
             for (; k + kVectors * n <= count; k += kVectors * n, ++b) {
