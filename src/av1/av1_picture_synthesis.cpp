@@ -265,8 +265,8 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
 
     // Subsampled horizontally above 8 bits, both chroma planes scale by the same luma averages
     // (co_sited_luma_row): made once per stripe into scratch, and read by the chroma kernels
-    // as unsubsampled luma. The luma pass makes them from each clean luma row just before
-    // blending it (in place, before it is overwritten), while the row is in cache and the
+    // as unsubsampled luma. The luma kernel makes them from each clean luma row as it loads
+    // it to blend (in place, before it is overwritten), so the row is read once and the
     // look-up's work hides the picture's memory; chroma then comes after luma. (At 8 bits,
     // where the chroma kernels average a pair in three operations per vector, sharing measured
     // no faster, so 8 bits average in the kernels; they take luma first only out of place.)
@@ -292,9 +292,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                     simd::BlockNoiseRow r = nz;
                     for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
                         const int y = y0 + i;
-                        if (share_co_sited && (i & ((1 << suby_) - 1)) == 0) make_co_sited_row(y, i >> suby_);
-                        simd::blend_luma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), r, width_, scaling_[0],
-                                                 scaling_shift, bit_depth_, clip_.min_value, clip_.max_luma);
+                        const bool co_sited_row = share_co_sited && (i & ((1 << suby_) - 1)) == 0;
+                        simd::blend_luma_row_u16(
+                            s.row<Pixel>(y), d.row<Pixel>(y), r, width_, scaling_[0], scaling_shift, bit_depth_,
+                            clip_.min_value, clip_.max_luma,
+                            co_sited_row ? co_sited + std::ptrdiff_t(i >> suby_) * chroma_width : nullptr);
                     }
                 }
             });

@@ -133,6 +133,21 @@ void check_rows(std::mt19937& rng, int bd, int iterations) {
         std::vector<Pixel> in_place = luma;
         blend_luma(in_place.data(), in_place.data(), luma_noise.row, luma_width, scaling, shift, bd, clip);
         ASSERT_EQ(in_place, want) << "luma in place, iteration " << iter;
+        if constexpr (sizeof(Pixel) == 2) {
+            // in place with the co-sited luma of the clean row as a by-product (the synthesis
+            // shares it between the chroma planes), nothing written past its end
+            const int co_sited_width = (luma_width + 1) / 2;
+            std::vector<uint16_t> co_sited_want(static_cast<std::size_t>(co_sited_width));
+            std::vector<uint16_t> co_sited_got(std::size_t(co_sited_width) + 40, uint16_t(0x7777));
+            av1::co_sited_luma_row<uint16_t>(luma.data(), luma_width, co_sited_width, co_sited_want.data());
+            in_place = luma;
+            av1::simd::blend_luma_row_u16(in_place.data(), in_place.data(), luma_noise.row, luma_width, scaling, shift,
+                                          bd, clip.min_value, clip.max_luma, co_sited_got.data());
+            ASSERT_EQ(in_place, want) << "luma in place with co-sited luma, iteration " << iter;
+            for (std::size_t x = 0; x < co_sited_got.size(); x++)
+                ASSERT_EQ(co_sited_got[x], x < co_sited_want.size() ? co_sited_want[x] : uint16_t(0x7777))
+                    << "co-sited luma at " << x << ", iteration " << iter << " luma width " << luma_width;
+        }
 
         want.assign(std::size_t(chroma_width), 0);
         got.assign(want.size(), 0);
@@ -155,6 +170,52 @@ TEST_P(SimdAv1BlendRowsEquivalence, EightBitRows) { check_rows<uint8_t>(rng, 8, 
 TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRows) {
     check_rows<uint16_t>(rng, 10, 100);
     check_rows<uint16_t>(rng, 12, 60);
+}
+
+// Samples beyond the declared bit depth (bad input nobody scans for): the references read
+// the scaling function's last entry for them (ScalingLookup), and every vector form must too,
+// whether a few such samples sit among valid ones near the top of the range or all are
+// large (below 2^14, where the 16-bit arithmetic of the kernels, co-sited pair sums included,
+// still holds).
+TEST_P(SimdAv1BlendRowsEquivalence, SamplesBeyondTheBitDepth) {
+    for (int iter = 0; iter < 60; iter++) {
+        const int bd = 10, width = uniform(0, 1) ? 1920 : uniform(1, 700);
+        // a few rows of the scale table around its end (where the vector forms look up a
+        // step's rows at once), a wider band, or anything
+        const int range = uniform(0, 2);
+        const int bottom = range == 0 ? 1005 : range == 1 ? 900 : 0;
+        const int top = range == 0 ? 1035 : range == 1 ? 1200 : 16383;
+        // a scaling function that still changes within the table's last rows, so that a
+        // wrong entry there shows
+        const int values[4] = {uniform(0, 120), uniform(121, 251), 252, 255};
+        const int scalings[4] = {uniform(0, 255), uniform(0, 255), uniform(0, 127), uniform(128, 255)};
+        const av1::ScalingLookup scaling(values, scalings, 4, bd);
+        const int shift = uniform(8, 11);
+        const av1::ClipLimits clip = av1::clip_limits(0, bd, 0);
+        const av1::ChromaScalingIndex index{uniform(0, 1) == 0, uniform(-128, 127), uniform(-128, 127),
+                                            uniform(-256, 255)};
+        const TemplateNoise luma_noise(width, 32, bd, 4, uniform(0, 2), rng);
+        const TemplateNoise chroma_noise(width, uniform(0, 1) ? 16 : 32, bd, 4, uniform(0, 2), rng);
+        std::vector<uint16_t> luma(static_cast<std::size_t>(width)), chroma(luma.size());
+        for (auto& v : luma) v = uint16_t(uniform(bottom, top));
+        for (auto& v : chroma) v = uint16_t(uniform(bottom, top));
+        std::vector<uint16_t> want(luma.size()), got(luma.size());
+        av1::blend_luma_row<uint16_t>(luma.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
+                                      clip.min_value, clip.max_luma);
+        av1::simd::blend_luma_row_u16(luma.data(), got.data(), luma_noise.row, width, scaling, shift, bd,
+                                      clip.min_value, clip.max_luma);
+        ASSERT_EQ(got, want) << "luma, iteration " << iter << " width " << width << " top " << top;
+        // chroma with luma of its width, or subsampled with luma twice as wide
+        const int subx = uniform(0, 1), luma_width = width << subx;
+        for (int i = width; i < luma_width; i++) luma.push_back(uint16_t(uniform(bottom, top)));
+        av1::blend_chroma_row<uint16_t>(chroma.data(), want.data(), luma.data(), luma_width,
+                                        chroma_noise.flat.data(), width, subx, index, scaling, shift, bd,
+                                        clip.min_value, clip.max_chroma);
+        av1::simd::blend_chroma_row_u16(chroma.data(), got.data(), luma.data(), luma_width, chroma_noise.row, width,
+                                        subx, index, scaling, shift, bd, clip.min_value, clip.max_chroma);
+        ASSERT_EQ(got, want) << "chroma, iteration " << iter << " width " << width << " top " << top
+                             << " from luma " << index.from_luma << " subx " << subx;
+    }
 }
 
 // The several-row kernels (blend_luma_rows_u8 / blend_chroma_rows_u8, as the synthesis calls

@@ -62,8 +62,13 @@ struct PlaneRows {
 // Twins of blend_luma_row.
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
+// With `co_sited` (horizontally subsampled chroma above 8 bits), blend_luma_row_u16 also writes
+// co_sited_luma_row_u16 of the clean row, (width + 1) / 2 samples, into it: the luma kernel
+// has the samples in registers when it loads them to blend (where dst is src, before it
+// overwrites them).
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                        uint16_t* co_sited = nullptr);
 
 // blend_luma_row_u8 of each of rows.count rows, one call for all (the row loop inside the
 // target's kernel, its constants made once).

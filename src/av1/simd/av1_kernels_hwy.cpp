@@ -106,6 +106,8 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
     const auto vmin = hn::Set(d16, int16_t(min_value)), vmax = hn::Set(d16, int16_t(max_value));
     const FadeConstants fade = FadeConstantsOf(row);
     const bool overlapped = row.seams || row.fade;
+    // (the sum saturating: samples beyond the bit depth, bad input, clip as the spec's
+    // integers do)
     auto blend = [&](int k, hn::Vec<D16> noise) FG_INLINE_LAMBDA {
         const auto add = hn::MulFixedPoint15(scale_at(k), noise);
         hn::Vec<D16> orig;
@@ -113,7 +115,7 @@ HWY_INLINE void AddBlockNoise(const Pixel* src, Pixel* dst, const BlockNoiseRow&
             orig = hn::BitCast(d16, hn::PromoteTo(du16, hn::LoadU(dp, src + x + k)));
         else
             orig = hn::BitCast(d16, hn::LoadU(dp, src + x + k));
-        const auto v = hn::Min(hn::Max(hn::Add(orig, add), vmin), vmax);
+        const auto v = hn::Min(hn::Max(hn::SaturatedAdd(orig, add), vmin), vmax);
         if constexpr (sizeof(Pixel) == 1)
             hn::StoreU(hn::DemoteTo(dp, v), dp, dst + x + k);
         else
@@ -283,7 +285,7 @@ HWY_INLINE void ChromaScalingIndices16(const Pixel* src, const Pixel* luma, int 
                     hn::ReorderWidenMulAccumulate(d32, hn::InterleaveUpper(d16, m, orig), mults, hn::Zero(d32), sum1h);
                 hi = hn::RearrangeToOddPlusEven(hi, sum1h);
                 m = hn::ReorderDemote2To(d16, hn::ShiftRight<6>(lo), hn::ShiftRight<6>(hi));
-                m = hn::Min(hn::Max(hn::Add(m, offset), hn::Zero(d16)), pixel_max);
+                m = hn::Min(hn::Max(hn::SaturatedAdd(m, offset), hn::Zero(d16)), pixel_max);
             }
         }
         if constexpr (sizeof(Out) == 1)
@@ -481,7 +483,8 @@ public:
           index_max_((1 << bit_depth) - 1),
           up_shift_(15 - scaling_shift) {}
     // Looks up `count` indices (a multiple of the 16-bit lane count); then At(k) gives the
-    // q15 scales of lanes [k, k + Lanes).
+    // q15 scales of lanes [k, k + Lanes). Every form clamps the indices to the table first:
+    // indices beyond the bit depth (samples of bad input) read its last entry, as in Scalar.
     template <typename Index>
     HWY_INLINE void LookUp(const Index* index, int count) {
         const auto* in = reinterpret_cast<const uint16_t*>(index);
@@ -502,14 +505,14 @@ public:
         const int max_base = last_row_ - 15;
         for (; k + 4 * n <= count; k += 4 * n) {
             hn::Vec<decltype(du16)> v[4], rel[4];
-            const int row = in[k] >> 4;
+            const int row = std::min(int(in[k]), index_max_) >> 4;
             const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
             for (int g = 0; g < 4; ++g) {
-                v[g] = hn::LoadU(du16, in + k + g * n);
+                v[g] = hn::Min(hn::LoadU(du16, in + k + g * n), c.index_max);
                 rel[g] = hn::Sub(hn::ShiftRight<4>(v[g]), first);
             }
             const auto top = hn::Max(hn::Max(rel[0], rel[1]), hn::Max(rel[2], rel[3]));
-            if (row <= last_row_ && hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(top, two), hn::Zero(du16)))) {
+            if (hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(top, two), hn::Zero(du16)))) {
                 const auto rows = ThreeRows<D8x>::At(full_, row, last_row_);
                 StoreByRows(c, rows, v[0], v[1], rel[0], rel[1], k);
                 StoreByRows(c, rows, v[2], v[3], rel[2], rel[3], k + 2 * n);
@@ -540,15 +543,20 @@ public:
     // the inlined loop (the q15 shift is a multiply by pow2 for the same reason: a shift by
     // a run-time count reloaded the count each time).
     struct Consts {
-        hn::Vec<hn::RebindToUnsigned<D16>> nibble, low_byte, two;
+        hn::Vec<hn::RebindToUnsigned<D16>> nibble, low_byte, two, index_max;
         hn::Vec<D16> pow2;  // 1 << up_shift_
         hn::Vec<hn::Repartition<uint8_t, D16>> one8, two8;
     };
     HWY_INLINE Consts MakeConsts() const {
         const hn::RebindToUnsigned<D16> du16;
         const hn::Repartition<uint8_t, D16> du8;
-        return {hn::Set(du16, uint16_t(15)), hn::Set(du16, uint16_t(0x00FF)), hn::Set(du16, uint16_t(2)),
-                hn::Set(D16(), int16_t(1 << up_shift_)), hn::Set(du8, uint8_t(1)), hn::Set(du8, uint8_t(2))};
+        return {hn::Set(du16, uint16_t(15)),
+                hn::Set(du16, uint16_t(0x00FF)),
+                hn::Set(du16, uint16_t(2)),
+                hn::Set(du16, uint16_t(index_max_)),
+                hn::Set(D16(), int16_t(1 << up_shift_)),
+                hn::Set(du8, uint8_t(1)),
+                hn::Set(du8, uint8_t(2))};
     }
     // The q15 scales of the pair (a, b) into scale_[k, k + 2 * Lanes), every sample of it
     // within `rows` of the full table (rel_a, rel_b: its row numbers relative to
@@ -624,18 +632,17 @@ public:
         const hn::Repartition<uint8_t, D16> du8;
         const int n = int(hn::Lanes(d16));
         const auto two = c.two, low_byte = c.low_byte, high_byte = hn::Set(du16, uint16_t(0xFF00));
-        const auto a = hn::LoadU(du16, in + k), b = hn::LoadU(du16, in + k + n);
-        const int row = in[k] >> 4;
+        const auto a = hn::Min(hn::LoadU(du16, in + k), c.index_max);
+        const auto b = hn::Min(hn::LoadU(du16, in + k + n), c.index_max);
+        const int row = std::min(int(in[k]), index_max_) >> 4;
         const auto first = hn::Set(du16, uint16_t(row - 1));  // wraps below 0
         const auto rel_a = hn::Sub(hn::ShiftRight<4>(a), first), rel_b = hn::Sub(hn::ShiftRight<4>(b), first);
-        // (A first sample beyond the bit depth, which would name a row past the table,
-        // takes the other form, whose byte indices cannot leave the LUT.)
-        if (try_rows && row <= last_row_ &&
+        if (try_rows &&
             hn::AllTrue(du16, hn::Eq(hn::SaturatedSub(hn::Max(rel_a, rel_b), two), hn::Zero(du16)))) {
             StoreByRows(c, ThreeRows<D8x>::At(full_, row, last_row_), a, b, rel_a, rel_b, k);
             return true;
         }
-        // The top bytes of indices below 1 << bit_depth fit 8 bits (larger ones wrap).
+        // (the top bytes of the clamped indices fit 8 bits)
         const auto top = hn::Or(hn::And(hn::ShiftRightSame(a, bd_shift_), low_byte),
                                 hn::And(hn::ShiftLeftSame(b, 8 - bd_shift_), high_byte));
         hn::Vec<decltype(du8)> ends[2];
@@ -664,9 +671,10 @@ private:
         const hn::Rebind<uint8_t, D16> d8;
         const hn::Repartition<uint8_t, D16> du8;
         const int n = int(hn::Lanes(d16)), nb = int(hn::Lanes(du8));
+        const auto index_max = hn::Set(du16, uint16_t(index_max_));
+        auto index_at = [&](int i) { return hn::BitCast(d16, hn::Min(hn::LoadU(du16, in + i), index_max)); };
         for (int j = from; j < count; j += n)
-            hn::Store(hn::DemoteTo(d8, hn::ShiftRightSame(hn::BitCast(d16, hn::LoadU(du16, in + j)), bd_shift_)), d8,
-                      top_ + j);
+            hn::Store(hn::DemoteTo(d8, hn::ShiftRightSame(index_at(j), bd_shift_)), d8, top_ + j);
         int j = from;
         for (; j + nb <= count; j += nb) {
             hn::Vec<decltype(du8)> ends[2];
@@ -678,7 +686,7 @@ private:
         for (int i = from; i < count; i += n) {
             const auto s = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, start_ + i)));
             const auto e = hn::BitCast(d16, hn::PromoteTo(du16, hn::Load(d8, end_ + i)));
-            const auto scale = Interpolate(s, e, hn::BitCast(d16, hn::LoadU(du16, in + i)));
+            const auto scale = Interpolate(s, e, index_at(i));
             hn::Store(hn::ShiftLeftSame(scale, up_shift_), d16, scale_ + i);
         }
     }
@@ -708,6 +716,8 @@ private:
     HWY_ALIGN int16_t scale_[kChunk];
 };
 
+#include "av1/simd/blend_10bit_avx2-inl.h"
+
 // 8 bits: scale * noise in 16-bit lanes (255 * 128 fits), rounded by pmulhrsw with the
 // scale shifted up to q15.
 // Samples [x_begin, width), x_begin a multiple of the block width: the vector forms hand
@@ -730,14 +740,15 @@ void BlendLumaRowU8Generic(const uint8_t* src, uint8_t* dst, const BlockNoiseRow
     }
 }
 
-// Above 8 bits the 16-bit lanes hold the samples themselves.
+// Above 8 bits the 16-bit lanes hold the samples themselves. Samples [x_begin, width), as
+// BlendLumaRowU8Generic.
 void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                             const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
-                            int max_value) {
+                            int max_value, int x_begin = 0) {
     const int n = int(hn::Lanes(D16()));
-    const int vec_end = width / n * n;
+    const int vec_end = std::max(x_begin, width / n * n);
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
-    for (int x = 0; x < vec_end; x += kChunk) {
+    for (int x = x_begin; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         scales.LookUp(src + x, chunk);
         AddBlockNoise(src, dst, noise, x, chunk, [&](int k) { return scales.At(k); }, min_value, max_value);
@@ -766,8 +777,62 @@ FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, co
 }
 #endif
 
+// co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
+// rounding by a rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product).
+// The column whose right luma sample lies past an odd-width row is left to the scalar tail.
+void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
+    const hn::ScalableTag<uint16_t> du16;
+    [[maybe_unused]] const int n = int(hn::Lanes(du16));
+    [[maybe_unused]] const int pairs = std::min(width, luma_width / 2);
+    int x = 0;
+#if HWY_TARGET == HWY_AVX2
+    const __m256i half = _mm256_set1_epi16(1 << 14), ones = _mm256_set1_epi16(1);
+    for (; x + n <= pairs; x += n) {
+        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
+        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + n));
+        // sums of two 12-bit samples fit int16
+        const __m256i sums = _mm256_packs_epi32(_mm256_madd_epi16(a, ones), _mm256_madd_epi16(b, ones));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
+                            _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
+    }
+#elif HWY_TARGET != HWY_SCALAR
+    for (; x + n <= pairs; x += n) {
+        const auto a = hn::LoadU(du16, luma + 2 * x), b = hn::LoadU(du16, luma + 2 * x + n);
+        hn::StoreU(hn::AverageRound(hn::ConcatEven(du16, b, a), hn::ConcatOdd(du16, b, a)), du16, out + x);
+    }
+#endif
+    for (; x < width; ++x)
+        out[x] = static_cast<uint16_t>(co_sited_luma(luma, luma_width, x));
+}
+
+#if HWY_TARGET == HWY_AVX2
+// 10 bits 64 samples per step in registers (blend_10bit_avx2-inl.h); the samples after the
+// last whole 32 the generic way.
+void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                         const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                         uint16_t* co_sited) {
+    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto rest = [&](int x) {
+        if (co_sited) CoSitedLumaRowU16(src + x, width - x, (width + 1) / 2 - x / 2, co_sited + x / 2);
+        BlendLumaRowU16Generic(src, dst, row, width, scaling, scaling_shift, 10, min_value, max_value, x);
+    };
+    avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
+        avx2::WithFlag(co_sited != nullptr, [&](auto with_co_sited) FG_INLINE_LAMBDA {
+            avx2::Luma10Row<decltype(overlap)::value, decltype(with_co_sited)::value>(
+                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, rest);
+        });
+    });
+}
+#endif
+
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                     uint16_t* co_sited) {
+#if HWY_TARGET == HWY_AVX2
+    if (bit_depth == 10 && noise.block_width == 32)
+        return BlendLumaRowU10Avx2(src, dst, noise, width, scaling, scaling_shift, min_value, max_value, co_sited);
+#endif
+    if (co_sited) CoSitedLumaRowU16(src, width, (width + 1) / 2, co_sited);
 #if HWY_TARGET == HWY_AVX3
     if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
         return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
@@ -947,11 +1012,11 @@ void BlendChromaRowU8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int
 void BlendChromaRowU16Generic(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                               const BlockNoiseRow& noise, int width, int subsampling_x,
                               const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
-                              int bit_depth, int min_value, int max_value) {
-    const int vec_end = ChromaVectorEnd(width, luma_width, subsampling_x);
+                              int bit_depth, int min_value, int max_value, int x_begin = 0) {
+    const int vec_end = std::max(x_begin, ChromaVectorEnd(width, luma_width, subsampling_x));
     HWY_ALIGN int16_t merged[kChunk];
     InterpolatedScales scales(scaling, bit_depth, scaling_shift);
-    for (int x = 0; x < vec_end; x += kChunk) {
+    for (int x = x_begin; x < vec_end; x += kChunk) {
         const int chunk = std::min(kChunk, vec_end - x);
         ChromaIndicesForTarget(src, luma, x, chunk, subsampling_x, index, bit_depth, merged);
         scales.LookUp(merged, chunk);
@@ -987,6 +1052,29 @@ FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, 
 }
 #endif
 
+#if HWY_TARGET == HWY_AVX2
+// 10 bits with unsubsampled (or shared co-sited) luma, 64 samples per step in registers
+// (blend_10bit_avx2-inl.h); the samples after the last whole 32 the generic way.
+void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                           const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
+                           const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto rest = [&](int x) {
+        BlendChromaRowU16Generic(src, dst, luma, luma_width, row, width, 0, index, scaling, scaling_shift, 10,
+                                 min_value, max_value, x);
+    };
+    avx2::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA {
+        avx2::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA {
+            avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
+                avx2::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
+                                  decltype(overlap)::value>(src, dst, luma, row, width, index, scaling, scaling_shift,
+                                                            min_value, max_value, rest);
+            });
+        });
+    });
+}
+#endif
+
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
@@ -996,36 +1084,13 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         return BlendChromaRowU10Avx512(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
                                        min_value, max_value);
 #endif
+#if HWY_TARGET == HWY_AVX2
+    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))
+        return BlendChromaRowU10Avx2(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
+                                     min_value, max_value);
+#endif
     BlendChromaRowU16Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
                              bit_depth, min_value, max_value);
-}
-
-// co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
-// rounding by a rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product).
-// The column whose right luma sample lies past an odd-width row is left to the scalar tail.
-void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
-    const hn::ScalableTag<uint16_t> du16;
-    [[maybe_unused]] const int n = int(hn::Lanes(du16));
-    [[maybe_unused]] const int pairs = std::min(width, luma_width / 2);
-    int x = 0;
-#if HWY_TARGET == HWY_AVX2
-    const __m256i half = _mm256_set1_epi16(1 << 14), ones = _mm256_set1_epi16(1);
-    for (; x + n <= pairs; x += n) {
-        const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x));
-        const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(luma + 2 * x + n));
-        // sums of two 12-bit samples fit int16
-        const __m256i sums = _mm256_packs_epi32(_mm256_madd_epi16(a, ones), _mm256_madd_epi16(b, ones));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + x),
-                            _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
-    }
-#elif HWY_TARGET != HWY_SCALAR
-    for (; x + n <= pairs; x += n) {
-        const auto a = hn::LoadU(du16, luma + 2 * x), b = hn::LoadU(du16, luma + 2 * x + n);
-        hn::StoreU(hn::AverageRound(hn::ConcatEven(du16, b, a), hn::ConcatOdd(du16, b, a)), du16, out + x);
-    }
-#endif
-    for (; x < width; ++x)
-        out[x] = static_cast<uint16_t>(co_sited_luma(luma, luma_width, x));
 }
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
@@ -1198,9 +1263,10 @@ void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma,
                                             scaling, scaling_shift, bit_depth, min_value, max_value);
 }
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                        uint16_t* co_sited) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value,
-                                          max_value);
+                                          max_value, co_sited);
 }
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,

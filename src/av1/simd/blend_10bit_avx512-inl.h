@@ -52,7 +52,7 @@ FG_AVX512_VBMI inline void Scales1024(const Lut1024& lut, __m512i index_low, __m
 // the q15 scale, clipped to [vmin, vmax].
 FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scale, __m512i noise, __m512i vmin,
                                         __m512i vmax) {
-    const __m512i v = _mm512_add_epi16(src, _mm512_mulhrs_epi16(scale, noise));
+    const __m512i v = _mm512_adds_epi16(src, _mm512_mulhrs_epi16(scale, noise));  // as the AVX2 twin
     _mm512_storeu_si512(dst, _mm512_min_epi16(_mm512_max_epi16(v, vmin), vmax));
 }
 
@@ -105,7 +105,7 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
     auto merged = [&](__m512i l, __m512i s) FG_AVX512_VBMI {
         const __m512i lo = _mm512_srai_epi32(_mm512_madd_epi16(_mm512_unpacklo_epi16(l, s), mults), 6);
         const __m512i hi = _mm512_srai_epi32(_mm512_madd_epi16(_mm512_unpackhi_epi16(l, s), mults), 6);
-        const __m512i m = _mm512_add_epi16(_mm512_packs_epi32(lo, hi), offset);
+        const __m512i m = _mm512_adds_epi16(_mm512_packs_epi32(lo, hi), offset);  // as the AVX2 twin
         return _mm512_min_epi16(_mm512_max_epi16(m, zero), last);
     };
     ForEach64<kBlockWidth, kOverlap>(

@@ -1,0 +1,220 @@
+// 10-bit AV1 noise application (AV1 7.18.3.5) 64 samples per step, for the AVX2 target of
+// av1_kernels_hwy.cpp: twins of blend_luma_row and blend_chroma_row (chroma with unsubsampled
+// or shared co-sited luma), bit-equal to them; included inside that file's HWY_NAMESPACE after
+// InterpolatedScales and blend_u8_avx2-inl.h, on the AVX2 pass only.
+//
+// Why a separate form: the generic kernels look a chunk's scales up into a buffer
+// (InterpolatedScales) and blend in a second pass that loads every sample again. Here a step
+// keeps its indices, scales and sums in registers. The scales come from InterpolatedScales'
+// three-row form (four vectors whose indices lie in the full table's rows at and around the
+// first one's: most of a decoded picture), with the indices clamped to the table first, so
+// that this form is exact for any sample (ScalingLookup reads the last entry beyond the bit
+// depth). A step that fails that test hands its indices to InterpolatedScales::LookUp, which
+// has the wider forms. 16-bit lanes hold samples in order throughout (the byte packing of
+// PackBytes pairs lanes, never crosses them), so no permutes are needed.
+#if HWY_TARGET == HWY_AVX2
+
+namespace avx2 {
+
+// What a 10-bit row's steps share besides the 8-bit StepConstants' fade weights.
+struct Step10Constants {
+    __m256i nibble, low_byte, one8, two8, two, last;
+    __m256i min_value, max_value;
+    __m128i up_shift;
+};
+
+inline Step10Constants MakeStep10Constants(int scaling_shift, int min_value, int max_value) {
+    return {_mm256_set1_epi16(15),
+            _mm256_set1_epi16(0xFF),
+            _mm256_set1_epi8(1),
+            _mm256_set1_epi8(2),
+            _mm256_set1_epi16(2),
+            _mm256_set1_epi16(1023),
+            _mm256_set1_epi16(int16_t(min_value)),
+            _mm256_set1_epi16(int16_t(max_value)),
+            _mm_cvtsi32_si128(15 - scaling_shift)};
+}
+
+// Out of line: inlined, the wider forms' state took the step's registers, and the three-row
+// form spilled its scales and constants to the stack.
+template <int kCount>
+HWY_NOINLINE void LookUpOutOfLine(InterpolatedScales& scales, const uint16_t* index) {
+    scales.LookUp(index, kCount);
+}
+
+// The q15 scales of kVectors (2 or 4) vectors of indices (0..1023, sample order) into
+// scale[]. Decoded pictures are locally smooth: the indices of a step mostly lie within a
+// few of the full table's 16-entry rows (on the 10-bit benchmark stream, within 3 rows for
+// 72 % of the 64-sample steps, within 8 for 88 %, within 16 for 95 %). Those rows, from the
+// step's lowest on, are looked up by byte shuffles on each index's low nibble, and each
+// index keeps the one of its row (a compare and blend per row). Steps spanning more rows
+// hand their indices to InterpolatedScales::LookUp, which has the wider forms.
+template <int kVectors>
+HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, const __m256i (&index)[kVectors],
+                         InterpolatedScales& fallback, __m256i (&scale)[kVectors]) {
+    __m256i row[kVectors];
+    for (int g = 0; g < kVectors; ++g) row[g] = _mm256_srli_epi16(index[g], 4);
+    __m256i lowest = row[0], highest = row[0];
+    for (int g = 1; g < kVectors; ++g) {
+        lowest = _mm256_min_epu16(lowest, row[g]);
+        highest = _mm256_max_epu16(highest, row[g]);
+    }
+    // horizontal minimum and maximum (phminposuw; the maximum as the minimum of the complement)
+    const __m128i low128 = _mm_min_epu16(_mm256_castsi256_si128(lowest), _mm256_extracti128_si256(lowest, 1));
+    const __m128i high128 = _mm_max_epu16(_mm256_castsi256_si128(highest), _mm256_extracti128_si256(highest, 1));
+    const int first = _mm_cvtsi128_si32(_mm_minpos_epu16(low128)) & 0xFFFF;
+    const __m128i high_complement = _mm_xor_si128(high128, _mm_set1_epi32(-1));
+    const int last = 0xFFFF - (_mm_cvtsi128_si32(_mm_minpos_epu16(high_complement)) & 0xFFFF);
+    const int span = last - first + 1;
+    // rows [base, base + count) of the table, count >= span
+    auto by_rows = [&](int base, auto count) FG_INLINE_LAMBDA {
+        constexpr int kPairs = kVectors / 2;
+        const __m256i base16 = _mm256_set1_epi16(int16_t(base));
+        __m256i low[kPairs], rel[kPairs], picked[kPairs];
+        const uint8_t* table = full_table + 16 * base;
+        const __m256i row0 = _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(table)));
+        for (int p = 0; p < kPairs; ++p) {
+            // the pair's low nibbles and rows (relative to the base) as the even and odd
+            // bytes of one vector
+            low[p] = _mm256_or_si256(_mm256_and_si256(index[2 * p], c.nibble),
+                                     _mm256_slli_epi16(_mm256_and_si256(index[2 * p + 1], c.nibble), 8));
+            rel[p] = _mm256_or_si256(_mm256_sub_epi16(row[2 * p], base16),
+                                     _mm256_slli_epi16(_mm256_sub_epi16(row[2 * p + 1], base16), 8));
+            picked[p] = _mm256_shuffle_epi8(row0, low[p]);
+        }
+        __m256i j = _mm256_setzero_si256();
+        for (int k = 1; k < int(count); ++k) {
+            j = _mm256_add_epi8(j, c.one8);
+            const __m256i entries =
+                _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(table + 16 * k)));
+            for (int p = 0; p < kPairs; ++p)
+                picked[p] = _mm256_blendv_epi8(picked[p], _mm256_shuffle_epi8(entries, low[p]),
+                                               _mm256_cmpeq_epi8(rel[p], j));
+        }
+        for (int p = 0; p < kPairs; ++p) {
+            scale[2 * p] = _mm256_sll_epi16(_mm256_and_si256(picked[p], c.low_byte), c.up_shift);
+            scale[2 * p + 1] = _mm256_sll_epi16(_mm256_srli_epi16(picked[p], 8), c.up_shift);
+        }
+    };
+    // The common case takes a fixed three rows (no loop whose count changes from step to
+    // step), ending at the table's last row at the latest.
+    if (span <= 3) return by_rows(std::min(first, 1023 / 16 - 2), std::integral_constant<int, 3>());
+    if (span <= 16) return by_rows(first, span);
+    HWY_ALIGN uint16_t stored[16 * kVectors];
+    for (int g = 0; g < kVectors; ++g) _mm256_store_si256(reinterpret_cast<__m256i*>(stored + 16 * g), index[g]);
+    LookUpOutOfLine<16 * kVectors>(fallback, stored);
+    for (int g = 0; g < kVectors; ++g) scale[g] = fallback.At(16 * g).raw;
+}
+
+// clip(src + Round2(scale * noise, shift)) of 16 samples into dst (the sum saturating, so
+// that samples beyond the bit depth clip as the spec's integers do).
+HWY_INLINE void StoreBlended10(const Step10Constants& c, uint16_t* dst, __m256i src, __m256i scale, __m256i noise) {
+    const __m256i v = _mm256_adds_epi16(src, _mm256_mulhrs_epi16(scale, noise));
+    const __m256i clipped = _mm256_min_epi16(_mm256_max_epi16(v, c.min_value), c.max_value);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst), clipped);
+}
+
+// The noise of samples [x, x + 16 * kVectors) of a row of kBlockWidth-sample blocks (16 or
+// 32), in sample order, the first pair of each block overlapped with its left neighbour:
+// faded jointly (FadeFirstPairs) for a 64-sample step, else one by one.
+template <int kBlockWidth, Overlap kOverlap, int kVectors>
+HWY_INLINE void Noise10(const BlockNoiseRow& row, int x, const StepConstants& fade, __m256i (&noise)[kVectors]) {
+    constexpr int kPerBlock = kBlockWidth / 16;  // vectors per block
+    const int b = x / kBlockWidth;
+    for (int g = 0; g < kVectors; ++g) noise[g] = Load256(row.block(b + g / kPerBlock) + 16 * (g % kPerBlock));
+    if constexpr (kOverlap == Overlap::kFade && kVectors == 4) {
+        const int16_t* left0 = row.block(b > 0 ? b - 1 : 0);
+        if constexpr (kPerBlock == 1)
+            FadeFirstPairs<4>({&noise[0], &noise[1], &noise[2], &noise[3]},
+                              {left0, row.block(b), row.block(b + 1), row.block(b + 2)}, kBlockWidth, x == 0, fade);
+        else
+            FadeFirstPairs<2>({&noise[0], &noise[2]}, {left0, row.block(b)}, kBlockWidth, x == 0, fade);
+    } else {
+        for (int g = 0; g < kVectors; g += kPerBlock)
+            noise[g] = OverlapFirstPair<kOverlap, kBlockWidth>(noise[g], row, b + g / kPerBlock,
+                                                               x + 16 * g, fade);
+    }
+}
+
+// blend_luma_row at 10 bits: the samples, clamped to the table, are their own indices. With
+// kCoSited, also co_sited_luma_row of the clean samples into co_sited (CoSitedLumaRowU16's
+// arithmetic: pair sums by a multiply-add with ones, halved with rounding by a rounding high
+// multiply by 1 << 14). `rest(x)` takes the samples after the last whole 32.
+template <Overlap kOverlap, bool kCoSited, class Rest>
+void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width, const ScalingLookup& scaling,
+               int scaling_shift, int min_value, int max_value, uint16_t* co_sited, Rest&& rest) {
+    const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
+    const Step10Constants c = MakeStep10Constants(scaling_shift, min_value, max_value);
+    InterpolatedScales fallback(scaling, 10, scaling_shift);
+    const uint8_t* full = scaling.full_table();
+    ForEachStep(
+        width, width,
+        [&](int x, auto samples) FG_INLINE_LAMBDA {
+            constexpr int kVectors = decltype(samples)::value / 16;
+            __m256i v[kVectors], index[kVectors], scale[kVectors], noise[kVectors];
+            for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
+                v[g] = Load256(src + x + 16 * g);
+                index[g] = _mm256_min_epu16(v[g], c.last);
+            }
+            if constexpr (kCoSited) {
+                // (sums of two samples below 2^15 fit int16)
+                const __m256i ones = _mm256_set1_epi16(1), half = _mm256_set1_epi16(1 << 14);
+                for (int g = 0; g < kVectors; g += 2) {
+                    const __m256i sums =
+                        _mm256_packs_epi32(_mm256_madd_epi16(v[g], ones), _mm256_madd_epi16(v[g + 1], ones));
+                    _mm256_storeu_si256(reinterpret_cast<__m256i*>(co_sited + x / 2 + 8 * g),
+                                        _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
+                }
+            }
+            Noise10<32, kOverlap, kVectors>(row, x, fade, noise);
+            Scales10<kVectors>(c, full, index, fallback, scale);
+            for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
+        },
+        rest);
+}
+
+// blend_chroma_row at 10 bits with unsubsampled luma (the synthesis hands subsampled chroma
+// its shared co-sited luma rows so). The index of chroma_scaling_index is the luma itself
+// (clamped) or (luma * luma_mult + chroma * mult) >> 6 plus the offset, clipped: one
+// multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits), whose
+// pack back to 16 bits restores the order the in-lane interleave split. `rest(x)` blends the
+// samples after the last whole 32.
+template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
+void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row, int width,
+                 const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift, int min_value,
+                 int max_value, Rest&& rest) {
+    const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
+    const Step10Constants c = MakeStep10Constants(scaling_shift, min_value, max_value);
+    InterpolatedScales fallback(scaling, 10, scaling_shift);
+    const uint8_t* full = scaling.full_table();
+    const __m256i mults =
+        _mm256_set1_epi32(int32_t(uint32_t(uint16_t(index.luma_mult)) | uint32_t(uint16_t(index.mult)) << 16));
+    const __m256i offset = _mm256_set1_epi16(int16_t(index.offset * 4)), zero = _mm256_setzero_si256();
+    auto merged = [&](__m256i l, __m256i s) FG_INLINE_LAMBDA {
+        const __m256i lo = _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(l, s), mults), 6);
+        const __m256i hi = _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(l, s), mults), 6);
+        // saturating, so that samples up to 15 bits (bad input) still clip as the spec's
+        // integers do
+        const __m256i m = _mm256_adds_epi16(_mm256_packs_epi32(lo, hi), offset);
+        return _mm256_min_epi16(_mm256_max_epi16(m, zero), c.last);
+    };
+    ForEachStep(
+        width, width,
+        [&](int x, auto samples) FG_INLINE_LAMBDA {
+            constexpr int kVectors = decltype(samples)::value / 16;
+            __m256i v[kVectors], idx[kVectors], scale[kVectors], noise[kVectors];
+            for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
+                v[g] = Load256(src + x + 16 * g);
+                const __m256i l = Load256(luma + x + 16 * g);
+                idx[g] = kFromLuma ? _mm256_min_epu16(l, c.last) : merged(l, v[g]);
+            }
+            Noise10<kBlockWidth, kOverlap, kVectors>(row, x, fade, noise);
+            Scales10<kVectors>(c, full, idx, fallback, scale);
+            for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
+        },
+        rest);
+}
+
+}  // namespace avx2
+
+#endif  // HWY_TARGET == HWY_AVX2
