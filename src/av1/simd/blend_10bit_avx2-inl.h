@@ -5,13 +5,11 @@
 //
 // Why a separate form: the generic kernels look a chunk's scales up into a buffer
 // (InterpolatedScales) and blend in a second pass that loads every sample again. Here a step
-// keeps its indices, scales and sums in registers. The scales come from InterpolatedScales'
-// three-row form (four vectors whose indices lie in the full table's rows at and around the
-// first one's: most of a decoded picture), with the indices clamped to the table first, so
-// that this form is exact for any sample (ScalingLookup reads the last entry beyond the bit
-// depth). A step that fails that test hands its indices to InterpolatedScales::LookUp, which
-// has the wider forms. 16-bit lanes hold samples in order throughout (the byte packing of
-// PackBytes pairs lanes, never crosses them), so no permutes are needed.
+// keeps its indices, scales and sums in registers, and looks its scales up by byte shuffles
+// over the rows of the full-range table its indices span (Scales10), the indices clamped to
+// the table first, so that every form is exact for any sample (ScalingLookup reads the last
+// entry beyond the bit depth). 16-bit lanes hold samples in order throughout (the byte
+// packing pairs lanes, never crosses them), so no permutes are needed.
 #if HWY_TARGET == HWY_AVX2
 
 namespace avx2 {
@@ -35,44 +33,38 @@ inline Step10Constants MakeStep10Constants(int scaling_shift, int min_value, int
             _mm_cvtsi32_si128(15 - scaling_shift)};
 }
 
-// Out of line: inlined, the wider forms' state took the step's registers, and the three-row
-// form spilled its scales and constants to the stack.
+// InterpolatedScales for the steps whose indices span more rows than Scales10 shuffles, out
+// of line and with its own state: inlined, its state took the kernel's registers, which
+// then spilled its scales and constants to the stack.
 template <int kCount>
-HWY_NOINLINE void LookUpOutOfLine(InterpolatedScales& scales, const uint16_t* index) {
+HWY_NOINLINE void LookUpOutOfLine(const ScalingLookup& scaling, int scaling_shift, const uint16_t* index,
+                                  int16_t* scale) {
+    InterpolatedScales scales(scaling, 10, scaling_shift);
     scales.LookUp(index, kCount);
+    for (int k = 0; k < kCount; k += 16) _mm256_store_si256(reinterpret_cast<__m256i*>(scale + k), scales.At(k).raw);
 }
 
 // The q15 scales of kVectors (2 or 4) vectors of indices (0..1023, sample order) into
 // scale[]. Decoded pictures are locally smooth: the indices of a step mostly lie within a
 // few of the full table's 16-entry rows (on the 10-bit benchmark stream, within 3 rows for
-// 72 % of the 64-sample steps, within 8 for 88 %, within 16 for 95 %). Those rows, from the
-// step's lowest on, are looked up by byte shuffles on each index's low nibble, and each
-// index keeps the one of its row (a compare and blend per row). Steps spanning more rows
-// hand their indices to InterpolatedScales::LookUp, which has the wider forms.
+// 72 % of the 64-sample steps, within 8 for 88 %, within 16 for 95 %, within 32 for 99.7 %).
+// Those rows, from the step's lowest on, are looked up by byte shuffles on each index's low
+// nibble, and each index keeps the one of its row (a compare and blend per row, 7
+// operations a row for 64 samples). Steps spanning more rows (noise-like content) take
+// InterpolatedScales' spec form, whose cost does not grow with the span.
 template <int kVectors>
 HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, const __m256i (&index)[kVectors],
-                         InterpolatedScales& fallback, __m256i (&scale)[kVectors]) {
+                         const ScalingLookup& scaling, int scaling_shift, __m256i (&scale)[kVectors]) {
     __m256i row[kVectors];
     for (int g = 0; g < kVectors; ++g) row[g] = _mm256_srli_epi16(index[g], 4);
-    __m256i lowest = row[0], highest = row[0];
-    for (int g = 1; g < kVectors; ++g) {
-        lowest = _mm256_min_epu16(lowest, row[g]);
-        highest = _mm256_max_epu16(highest, row[g]);
-    }
-    // horizontal minimum and maximum (phminposuw; the maximum as the minimum of the complement)
-    const __m128i low128 = _mm_min_epu16(_mm256_castsi256_si128(lowest), _mm256_extracti128_si256(lowest, 1));
-    const __m128i high128 = _mm_max_epu16(_mm256_castsi256_si128(highest), _mm256_extracti128_si256(highest, 1));
-    const int first = _mm_cvtsi128_si32(_mm_minpos_epu16(low128)) & 0xFFFF;
-    const __m128i high_complement = _mm_xor_si128(high128, _mm_set1_epi32(-1));
-    const int last = 0xFFFF - (_mm_cvtsi128_si32(_mm_minpos_epu16(high_complement)) & 0xFFFF);
-    const int span = last - first + 1;
     // rows [base, base + count) of the table, count >= span
     auto by_rows = [&](int base, auto count) FG_INLINE_LAMBDA {
         constexpr int kPairs = kVectors / 2;
         const __m256i base16 = _mm256_set1_epi16(int16_t(base));
         __m256i low[kPairs], rel[kPairs], picked[kPairs];
         const uint8_t* table = full_table + 16 * base;
-        const __m256i row0 = _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(table)));
+        const __m256i first_row =
+            _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(table)));
         for (int p = 0; p < kPairs; ++p) {
             // the pair's low nibbles and rows (relative to the base) as the even and odd
             // bytes of one vector
@@ -80,7 +72,7 @@ HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, co
                                      _mm256_slli_epi16(_mm256_and_si256(index[2 * p + 1], c.nibble), 8));
             rel[p] = _mm256_or_si256(_mm256_sub_epi16(row[2 * p], base16),
                                      _mm256_slli_epi16(_mm256_sub_epi16(row[2 * p + 1], base16), 8));
-            picked[p] = _mm256_shuffle_epi8(row0, low[p]);
+            picked[p] = _mm256_shuffle_epi8(first_row, low[p]);
         }
         __m256i j = _mm256_setzero_si256();
         for (int k = 1; k < int(count); ++k) {
@@ -96,14 +88,36 @@ HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, co
             scale[2 * p + 1] = _mm256_sll_epi16(_mm256_srli_epi16(picked[p], 8), c.up_shift);
         }
     };
-    // The common case takes a fixed three rows (no loop whose count changes from step to
-    // step), ending at the table's last row at the latest.
+    // The common case, all in the three rows around the first sample's (a cheaper test than
+    // the span's), takes a fixed three rows: no loop whose count changes from step to step.
+    {
+        const int row0 = (_mm256_cvtsi256_si32(index[0]) & 0xFFFF) >> 4;
+        const __m256i below = _mm256_set1_epi16(int16_t(row0 - 1));  // wraps below 0
+        __m256i top = _mm256_sub_epi16(row[0], below);
+        for (int g = 1; g < kVectors; ++g) top = _mm256_max_epu16(top, _mm256_sub_epi16(row[g], below));
+        const __m256i beyond = _mm256_subs_epu16(top, c.two);
+        if (_mm256_testz_si256(beyond, beyond))
+            return by_rows(std::clamp(row0 - 1, 0, 1023 / 16 - 2), std::integral_constant<int, 3>());
+    }
+    __m256i lowest = row[0], highest = row[0];
+    for (int g = 1; g < kVectors; ++g) {
+        lowest = _mm256_min_epu16(lowest, row[g]);
+        highest = _mm256_max_epu16(highest, row[g]);
+    }
+    // horizontal minimum and maximum (phminposuw; the maximum as the minimum of the complement)
+    const __m128i low128 = _mm_min_epu16(_mm256_castsi256_si128(lowest), _mm256_extracti128_si256(lowest, 1));
+    const __m128i high128 = _mm_max_epu16(_mm256_castsi256_si128(highest), _mm256_extracti128_si256(highest, 1));
+    const int first = _mm_cvtsi128_si32(_mm_minpos_epu16(low128)) & 0xFFFF;
+    const __m128i high_complement = _mm_xor_si128(high128, _mm_set1_epi32(-1));
+    const int last = 0xFFFF - (_mm_cvtsi128_si32(_mm_minpos_epu16(high_complement)) & 0xFFFF);
+    const int span = last - first + 1;
     if (span <= 3) return by_rows(std::min(first, 1023 / 16 - 2), std::integral_constant<int, 3>());
-    if (span <= 16) return by_rows(first, span);
+    if (span <= 32) return by_rows(first, span);
     HWY_ALIGN uint16_t stored[16 * kVectors];
+    HWY_ALIGN int16_t scales[16 * kVectors];
     for (int g = 0; g < kVectors; ++g) _mm256_store_si256(reinterpret_cast<__m256i*>(stored + 16 * g), index[g]);
-    LookUpOutOfLine<16 * kVectors>(fallback, stored);
-    for (int g = 0; g < kVectors; ++g) scale[g] = fallback.At(16 * g).raw;
+    LookUpOutOfLine<16 * kVectors>(scaling, scaling_shift, stored, scales);
+    for (int g = 0; g < kVectors; ++g) scale[g] = _mm256_load_si256(reinterpret_cast<const __m256i*>(scales + 16 * g));
 }
 
 // clip(src + Round2(scale * noise, shift)) of 16 samples into dst (the sum saturating, so
@@ -145,7 +159,6 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
                int scaling_shift, int min_value, int max_value, uint16_t* co_sited, Rest&& rest) {
     const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
     const Step10Constants c = MakeStep10Constants(scaling_shift, min_value, max_value);
-    InterpolatedScales fallback(scaling, 10, scaling_shift);
     const uint8_t* full = scaling.full_table();
     ForEachStep(
         width, width,
@@ -167,7 +180,7 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
                 }
             }
             Noise10<32, kOverlap, kVectors>(row, x, fade, noise);
-            Scales10<kVectors>(c, full, index, fallback, scale);
+            Scales10<kVectors>(c, full, index, scaling, scaling_shift, scale);
             for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
         },
         rest);
@@ -185,7 +198,6 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
                  int max_value, Rest&& rest) {
     const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
     const Step10Constants c = MakeStep10Constants(scaling_shift, min_value, max_value);
-    InterpolatedScales fallback(scaling, 10, scaling_shift);
     const uint8_t* full = scaling.full_table();
     const __m256i mults =
         _mm256_set1_epi32(int32_t(uint32_t(uint16_t(index.luma_mult)) | uint32_t(uint16_t(index.mult)) << 16));
@@ -209,7 +221,7 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
                 idx[g] = kFromLuma ? _mm256_min_epu16(l, c.last) : merged(l, v[g]);
             }
             Noise10<kBlockWidth, kOverlap, kVectors>(row, x, fade, noise);
-            Scales10<kVectors>(c, full, idx, fallback, scale);
+            Scales10<kVectors>(c, full, idx, scaling, scaling_shift, scale);
             for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
         },
         rest);
