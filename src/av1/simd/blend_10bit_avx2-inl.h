@@ -14,18 +14,25 @@
 
 namespace avx2 {
 
-// What a 10-bit row's steps share besides the 8-bit StepConstants' fade weights.
+// What a 10-bit row's steps share besides the 8-bit StepConstants' fade weights: the scaling
+// function and the look-up's and blend's constants.
 struct Step10Constants {
-    __m256i nibble, low_byte, one8, two8, two, last;
+    const ScalingLookup* scaling;
+    const uint8_t* full_table;  // scaling->full_table()
+    int scaling_shift;
+    __m256i nibble, low_byte, one8, two, last;
     __m256i min_value, max_value;
     __m128i up_shift;
 };
 
-inline Step10Constants MakeStep10Constants(int scaling_shift, int min_value, int max_value) {
-    return {_mm256_set1_epi16(15),
+inline Step10Constants MakeStep10Constants(const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                           int max_value) {
+    return {&scaling,
+            scaling.full_table(),
+            scaling_shift,
+            _mm256_set1_epi16(15),
             _mm256_set1_epi16(0xFF),
             _mm256_set1_epi8(1),
-            _mm256_set1_epi8(2),
             _mm256_set1_epi16(2),
             _mm256_set1_epi16(1023),
             _mm256_set1_epi16(int16_t(min_value)),
@@ -53,8 +60,7 @@ HWY_NOINLINE void LookUpOutOfLine(const ScalingLookup& scaling, int scaling_shif
 // operations a row for 64 samples). Steps spanning more rows (noise-like content) take
 // InterpolatedScales' spec form, whose cost does not grow with the span.
 template <int kVectors>
-HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, const __m256i (&index)[kVectors],
-                         const ScalingLookup& scaling, int scaling_shift, __m256i (&scale)[kVectors]) {
+HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVectors], __m256i (&scale)[kVectors]) {
     __m256i row[kVectors];
     for (int g = 0; g < kVectors; ++g) row[g] = _mm256_srli_epi16(index[g], 4);
     // rows [base, base + count) of the table, count >= span
@@ -62,7 +68,7 @@ HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, co
         constexpr int kPairs = kVectors / 2;
         const __m256i base16 = _mm256_set1_epi16(int16_t(base));
         __m256i low[kPairs], rel[kPairs], picked[kPairs];
-        const uint8_t* table = full_table + 16 * base;
+        const uint8_t* table = c.full_table + 16 * base;
         const __m256i first_row =
             _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(table)));
         for (int p = 0; p < kPairs; ++p) {
@@ -116,7 +122,7 @@ HWY_INLINE void Scales10(const Step10Constants& c, const uint8_t* full_table, co
     HWY_ALIGN uint16_t stored[16 * kVectors];
     HWY_ALIGN int16_t scales[16 * kVectors];
     for (int g = 0; g < kVectors; ++g) _mm256_store_si256(reinterpret_cast<__m256i*>(stored + 16 * g), index[g]);
-    LookUpOutOfLine<16 * kVectors>(scaling, scaling_shift, stored, scales);
+    LookUpOutOfLine<16 * kVectors>(*c.scaling, c.scaling_shift, stored, scales);
     for (int g = 0; g < kVectors; ++g) scale[g] = _mm256_load_si256(reinterpret_cast<const __m256i*>(scales + 16 * g));
 }
 
@@ -150,6 +156,17 @@ HWY_INLINE void Noise10(const BlockNoiseRow& row, int x, const StepConstants& fa
     }
 }
 
+// The rest of a step whose samples v and scaling indices are loaded: its noise, scales and
+// blended output.
+template <int kBlockWidth, Overlap kOverlap, int kVectors>
+HWY_INLINE void BlendStep10(const StepConstants& fade, const Step10Constants& c, const BlockNoiseRow& row, int x,
+                            const __m256i (&v)[kVectors], const __m256i (&index)[kVectors], uint16_t* dst) {
+    __m256i scale[kVectors], noise[kVectors];
+    Noise10<kBlockWidth, kOverlap, kVectors>(row, x, fade, noise);
+    Scales10<kVectors>(c, index, scale);
+    for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
+}
+
 // blend_luma_row at 10 bits: the samples, clamped to the table, are their own indices. With
 // kCoSited, also co_sited_luma_row of the clean samples into co_sited (CoSitedLumaRowU16's
 // arithmetic: pair sums by a multiply-add with ones, halved with rounding by a rounding high
@@ -158,13 +175,12 @@ template <Overlap kOverlap, bool kCoSited, class Rest>
 void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width, const ScalingLookup& scaling,
                int scaling_shift, int min_value, int max_value, uint16_t* co_sited, Rest&& rest) {
     const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
-    const Step10Constants c = MakeStep10Constants(scaling_shift, min_value, max_value);
-    const uint8_t* full = scaling.full_table();
+    const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
     ForEachStep(
         width, width,
         [&](int x, auto samples) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(samples)::value / 16;
-            __m256i v[kVectors], index[kVectors], scale[kVectors], noise[kVectors];
+            __m256i v[kVectors], index[kVectors];
             for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
                 v[g] = Load256(src + x + 16 * g);
                 index[g] = _mm256_min_epu16(v[g], c.last);
@@ -179,9 +195,7 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
                                         _mm256_mulhrs_epi16(_mm256_permute4x64_epi64(sums, 0xD8), half));
                 }
             }
-            Noise10<32, kOverlap, kVectors>(row, x, fade, noise);
-            Scales10<kVectors>(c, full, index, scaling, scaling_shift, scale);
-            for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
+            BlendStep10<32, kOverlap>(fade, c, row, x, v, index, dst);
         },
         rest);
 }
@@ -197,8 +211,7 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
                  const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift, int min_value,
                  int max_value, Rest&& rest) {
     const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
-    const Step10Constants c = MakeStep10Constants(scaling_shift, min_value, max_value);
-    const uint8_t* full = scaling.full_table();
+    const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
     const __m256i mults =
         _mm256_set1_epi32(int32_t(uint32_t(uint16_t(index.luma_mult)) | uint32_t(uint16_t(index.mult)) << 16));
     const __m256i offset = _mm256_set1_epi16(int16_t(index.offset * 4)), zero = _mm256_setzero_si256();
@@ -214,15 +227,13 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
         width, width,
         [&](int x, auto samples) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(samples)::value / 16;
-            __m256i v[kVectors], idx[kVectors], scale[kVectors], noise[kVectors];
+            __m256i v[kVectors], idx[kVectors];
             for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
                 v[g] = Load256(src + x + 16 * g);
                 const __m256i l = Load256(luma + x + 16 * g);
                 idx[g] = kFromLuma ? _mm256_min_epu16(l, c.last) : merged(l, v[g]);
             }
-            Noise10<kBlockWidth, kOverlap, kVectors>(row, x, fade, noise);
-            Scales10<kVectors>(c, full, idx, scaling, scaling_shift, scale);
-            for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
+            BlendStep10<kBlockWidth, kOverlap>(fade, c, row, x, v, idx, dst);
         },
         rest);
 }
