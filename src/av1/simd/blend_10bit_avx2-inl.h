@@ -59,6 +59,9 @@ HWY_NOINLINE void LookUpOutOfLine(const ScalingLookup& scaling, int scaling_shif
 // nibble, and each index keeps the one of its row (a compare and blend per row, 7
 // operations a row for 64 samples). Steps spanning more rows (noise-like content) take
 // InterpolatedScales' spec form, whose cost does not grow with the span.
+// The last row from which three rows of the 10-bit table (64 rows of 16) are whole.
+constexpr int kLastThreeRowBase = 1023 / 16 - 2;
+
 template <int kVectors>
 HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVectors], __m256i (&scale)[kVectors]) {
     __m256i row[kVectors];
@@ -103,7 +106,7 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
         for (int g = 1; g < kVectors; ++g) top = _mm256_max_epu16(top, _mm256_sub_epi16(row[g], below));
         const __m256i beyond = _mm256_subs_epu16(top, c.two);
         if (_mm256_testz_si256(beyond, beyond))
-            return by_rows(std::clamp(row0 - 1, 0, 1023 / 16 - 2), std::integral_constant<int, 3>());
+            return by_rows(std::clamp(row0 - 1, 0, kLastThreeRowBase), std::integral_constant<int, 3>());
     }
     __m256i lowest = row[0], highest = row[0];
     for (int g = 1; g < kVectors; ++g) {
@@ -117,7 +120,7 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
     const __m128i high_complement = _mm_xor_si128(high128, _mm_set1_epi32(-1));
     const int last = 0xFFFF - (_mm_cvtsi128_si32(_mm_minpos_epu16(high_complement)) & 0xFFFF);
     const int span = last - first + 1;
-    if (span <= 3) return by_rows(std::min(first, 1023 / 16 - 2), std::integral_constant<int, 3>());
+    if (span <= 3) return by_rows(std::min(first, kLastThreeRowBase), std::integral_constant<int, 3>());
     if (span <= 32) return by_rows(first, span);
     HWY_ALIGN uint16_t stored[16 * kVectors];
     HWY_ALIGN int16_t scales[16 * kVectors];
