@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -142,8 +143,11 @@ const char* kValidParams = R"({"log2_scale_factor": 5, "comp_model_present_flag"
 class HardeningIo : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("filmgrain-hardening-io-" + std::to_string(::getpid()) + "-" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        // a parameterized test's name holds a '/' ("SamplesSurviveBothWays/gray"), which would
+        // make a directory inside the one TearDown leaves behind
+        std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        std::replace(name.begin(), name.end(), '/', '-');
+        dir = fs::temp_directory_path() / ("filmgrain-hardening-io-" + std::to_string(::getpid()) + "-" + name);
         fs::remove_all(dir);
         fs::create_directories(dir);
         write_file(dir / "p.json", kValidParams);

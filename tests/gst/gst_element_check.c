@@ -15,6 +15,7 @@
 #include <gst/app/gstappsink.h>
 #include <gst/check/gstcheck.h>
 #include <gst/check/gstharness.h>
+#include <glib/gstdio.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -432,6 +433,23 @@ static Suite* filmgrain_elements_suite(void) {
     return s;
 }
 
+// The files the tests wrote, all directly in test_dir, and test_dir itself.
+static void remove_test_dir(void) {
+    GDir* d = g_dir_open(test_dir, 0, NULL);
+    if (d) {
+        const gchar* name;
+        while ((name = g_dir_read_name(d)) != NULL) {
+            gchar* path = g_build_filename(test_dir, name, NULL);
+            g_remove(path);
+            g_free(path);
+        }
+        g_dir_close(d);
+    }
+    g_rmdir(test_dir);
+    g_free(test_dir);
+    test_dir = NULL;
+}
+
 int main(int argc, char** argv) {
     gst_check_init(&argc, &argv);
     test_dir = g_dir_make_tmp("filmgrain-gst-check-XXXXXX", NULL);
@@ -441,5 +459,6 @@ int main(int argc, char** argv) {
     srunner_run_all(sr, CK_NORMAL);
     const int failed = srunner_ntests_failed(sr);
     srunner_free(sr);
+    remove_test_dir();
     return failed == 0 ? 0 : 1;
 }
