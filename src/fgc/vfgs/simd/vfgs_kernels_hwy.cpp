@@ -245,7 +245,9 @@ HWY_INLINE int BlendRowU16Int16(const BlendRowJob& job, const uint16_t* in, cons
     const hn::RebindToUnsigned<decltype(d)> du;
     const hn::Rebind<Out, decltype(d)> dout;
     const int n = static_cast<int>(hn::Lanes(d));
-    const auto [scale_up, grain_up] = Q15ShiftsOf(job);
+    // plain ints, not a structured binding: lambdas capture them (clang before 16 cannot)
+    const Q15Shifts shifts = Q15ShiftsOf(job);
+    const int scale_up = shifts.scale_up, grain_up = shifts.grain_up;
     const auto cap = hn::Set(du, kSampleCap);
     const auto hi = hn::Set(d, static_cast<int16_t>(255 << (job.bit_depth - 8)));
     const auto zero = hn::Zero(d), two = hn::Set(d, int16_t{2});
@@ -318,7 +320,8 @@ HWY_NOINLINE void GrainBlendBlocks(const GrainRowJob& job, const BlendRowJob& bl
     const int count = RunSteps(*job.runs, kRuns, steps);
     // 10 bits: BlendRowU16Int16's split of the q15 shift, the scale's part applied to the
     // runs' scales here, once.
-    const auto [scale_up, grain_up] = Q15ShiftsOf(blend);
+    const Q15Shifts shifts = Q15ShiftsOf(blend);  // as plain ints, for the lambdas (see above)
+    const int scale_up = shifts.scale_up, grain_up = shifts.grain_up;
     if constexpr (!k8Bit)
         for (int r = 0; r < count; ++r) steps[r].scale = static_cast<int16_t>(steps[r].scale << scale_up);
     const auto cap = hn::Set(du, kSampleCap);
