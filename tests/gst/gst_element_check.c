@@ -459,6 +459,10 @@ int main(int argc, char** argv) {
     srunner_run_all(sr, CK_NORMAL);
     const int failed = srunner_ntests_failed(sr);
     srunner_free(sr);
-    remove_test_dir();
+    // FILMGRAIN_KEEP_TEST_FILES=1 keeps them for a look at a failure (as tests/cli does)
+    if (g_getenv("FILMGRAIN_KEEP_TEST_FILES"))
+        g_printerr("test files kept in %s\n", test_dir);
+    else
+        remove_test_dir();
     return failed == 0 ? 0 : 1;
 }
