@@ -293,7 +293,8 @@ TEST_F(HardeningIo, FatalSignalsRemoveThePartialOutput) {
 
 // F6: an error known at frame 0 waited for the reader thread to reach the end of a slow
 // input (a pipe that delivers one frame, then nothing for a minute). The tool now exits
-// within 3 s, with the error, while the pipe is still open.
+// with the error while the pipe is still open: the bound is a third of the pipe's minute, so
+// a loaded CI machine or a sanitizer build cannot fail it and a tool that waits still does.
 TEST_F(HardeningIo, ErrorAtFrameZeroDoesNotWaitForASlowInput) {
     const int frame = 176 * 144 * 3 / 2;
     struct Case {
@@ -315,7 +316,7 @@ TEST_F(HardeningIo, ErrorAtFrameZeroDoesNotWaitForASlowInput) {
         const auto seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         ASSERT_TRUE(r.clean_error()) << r.output;
         EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
-        EXPECT_LT(seconds, 3.0) << "the tool waited for the input pipe";
+        EXPECT_LT(seconds, 20.0) << "the tool waited for the input pipe";
         EXPECT_TRUE(partial_outputs(dir).empty());
     }
 }
