@@ -29,7 +29,8 @@ void GrainAnalyzer::add_frame(const FrameBuffer& source, const FrameBuffer* deno
                      denoised->format().chroma != fmt_.chroma || denoised->format().bit_depth != fmt_.bit_depth))
         throw Error(ErrorCode::kInvalidArgument,
                     "denoised frame " + std::to_string(frames_seen_) + " differs in size or format from the source");
-    Held h{o_.first_index + frames_seen_, source, denoised ? std::make_unique<FrameBuffer>(*denoised) : nullptr};
+    Held h{o_.first_index + frames_seen_, source, denoised ? std::make_unique<FrameBuffer>(*denoised) : nullptr, {},
+           std::nullopt};
     window_.push_back(std::move(h));
     frames_seen_++;
     // A picture is analysed once its right-hand neighbours have arrived.
