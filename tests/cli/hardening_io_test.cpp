@@ -293,8 +293,8 @@ TEST_F(HardeningIo, FatalSignalsRemoveThePartialOutput) {
 
 // F6: an error known at frame 0 waited for the reader thread to reach the end of a slow
 // input (a pipe that delivers one frame, then nothing for a minute). The tool now exits
-// with the error while the pipe is still open: the bound is a third of the pipe's minute, so
-// a loaded CI machine or a sanitizer build cannot fail it and a tool that waits still does.
+// with the error while the pipe is still open. The bound is a third of the pipe's minute:
+// wide enough for a loaded CI machine or a sanitizer build, and a tool that waits still fails.
 TEST_F(HardeningIo, ErrorAtFrameZeroDoesNotWaitForASlowInput) {
     const int frame = 176 * 144 * 3 / 2;
     struct Case {
