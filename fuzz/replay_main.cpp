@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -23,6 +24,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
@@ -133,11 +136,11 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; i++) {
         const std::string a = argv[i];
         if ((a == "--mutations" || a == "--seed") && i + 1 < argc) {
-            char* end = nullptr;
-            const unsigned long long v = std::strtoull(argv[++i], &end, 10);
-            if (!end || *end) return usage(argv[0]);
-            if (a == "--mutations") mutations = static_cast<long>(v);
-            else seed = v;
+            // from_chars: no sign, no wrap (strtoull takes "-1" as 2^64 - 1)
+            const std::string_view v = argv[++i];
+            const auto parsed = a == "--mutations" ? std::from_chars(v.data(), v.data() + v.size(), mutations)
+                                                   : std::from_chars(v.data(), v.data() + v.size(), seed);
+            if (parsed.ec != std::errc() || parsed.ptr != v.data() + v.size() || mutations < 0) return usage(argv[0]);
         } else if (a.rfind("--", 0) == 0) {
             return usage(argv[0]);
         } else if (std::filesystem::is_directory(a)) {

@@ -86,23 +86,25 @@ inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride
         const int8_t* left = has_left ? bl[-1] + offset : nullptr;
         const int8_t* right = has_right ? bl[8] + offset : nullptr;
         const __mmask64 filtered = filtered_at(x);
+        // the row at offset o from the 16 bytes of each pair k, k + 1 (k even)
+        auto row_of_pairs = [](std::ptrdiff_t o, auto pair) {
+            const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0, o)), pair(2, o), 1);
+            const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4, o)), pair(6, o), 1);
+            return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+        };
         const bool joined = p[1] == p[0] + 8 && p[3] == p[2] + 8 && p[5] == p[4] + 8 && p[7] == p[6] + 8;
         if (joined)
             rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
-                auto pair = [&](int k) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p[k] + o)); };
-                const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0)), pair(2), 1);
-                const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4)), pair(6), 1);
-                return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+                return row_of_pairs(o, [&](int k, std::ptrdiff_t r) {
+                    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p[k] + r));
+                });
             });
         else
             rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
-                auto pair = [&](int k) {
-                    return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k] + o)),
-                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k + 1] + o)));
-                };
-                const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0)), pair(2), 1);
-                const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4)), pair(6), 1);
-                return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+                return row_of_pairs(o, [&](int k, std::ptrdiff_t r) {
+                    return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k] + r)),
+                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k + 1] + r)));
+                });
             });
     };
     // Any other columns (past `end` in part or whole): through a buffer, element by element.
