@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; i++) {
         const std::string a = argv[i];
         if ((a == "--mutations" || a == "--seed") && i + 1 < argc) {
-            // from_chars: no sign, no wrap (strtoull takes "-1" as 2^64 - 1)
+            // from_chars, not strtoull (which takes "-1" as 2^64 - 1): no wrap, and a negative count is refused
             const std::string_view v = argv[++i];
             const auto parsed = a == "--mutations" ? std::from_chars(v.data(), v.data() + v.size(), mutations)
                                                    : std::from_chars(v.data(), v.data() + v.size(), seed);
