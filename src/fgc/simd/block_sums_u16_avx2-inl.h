@@ -1,5 +1,6 @@
 // Sums of 8x8 blocks of 16-bit samples for the AVX2 target of fgc_kernels_hwy.cpp; included
-// inside that file's HWY_NAMESPACE, on the AVX2 pass only. Bit-equal to the generic
+// inside that file's HWY_NAMESPACE, on the AVX2 pass and on the AVX3 pass (after the 512-bit
+// form there, for the groups of four blocks it leaves). Bit-equal to the generic
 // BlockSumsU16 (simd_equivalence_test: FgcBlockSums16BitExact).
 //
 // Why a separate form: the generic one widens every sample to 32 bits (8 per vector) and
@@ -11,7 +12,7 @@
 // profile, and the frame took 0.83-1.08 ms against 0.99-1.34 (4 interleaved rounds). The same
 // for 16x16 blocks (one vector per block row, three hadds for four blocks) was slower than
 // the generic form (25 % of vtm's 10-bit profile against 20 %) and is not used.
-#if HWY_TARGET == HWY_AVX2
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
 
 namespace avx2 {
 
@@ -39,4 +40,4 @@ inline int BlockSums8U16(const uint16_t* src, std::ptrdiff_t stride, int rows, i
 
 }  // namespace avx2
 
-#endif  // HWY_TARGET == HWY_AVX2
+#endif  // HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3

@@ -384,6 +384,7 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
 }
 
 #include "fgc/simd/block_sums_u16_avx2-inl.h"
+#include "fgc/simd/block_sums_u16_avx512-inl.h"
 #include "fgc/simd/block_tables_u8_avx2-inl.h"
 #include "fgc/simd/block_rows_u8_avx512-inl.h"
 
@@ -445,7 +446,13 @@ void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int widt
 }
 
 void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
-#if HWY_TARGET == HWY_AVX2
+#if HWY_TARGET == HWY_AVX3
+    if (block == 8) {
+        const int done = avx512::BlockSums8U16(src, stride, rows, width / 8, sums);
+        src += 8 * done, sums += done, width -= 8 * done;
+    }
+#endif
+#if HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_AVX3
     if (block == 8) {
         const int done = avx2::BlockSums8U16(src, stride, rows, width / 8, sums);
         src += 8 * done, sums += done, width -= 8 * done;
