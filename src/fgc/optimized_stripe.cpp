@@ -15,13 +15,13 @@ namespace filmgrain::fgc {
 // give each block its interval; a block's grain is then a pointer into that interval's
 // scaled template (ScaledTemplates: the reference's per-sample products, made once per
 // parameter set), or into stripe scratch scaled block by block when the component has too
-// many intervals for tables. Eight rows at a time, the blocks' rows are copied into a band
-// of grain rows (int8 when the tables are: 8-bit grain always fits), which the fused
-// deblocking + blending kernel adds to the picture row by row: the grain of a whole stripe
-// is never written out. 8-bit pictures with int8 tables skip the band too: their kernel
-// loads each row's grain from the blocks' pointers itself, and their whole blocks get their
-// tables from a kernel that sums them. Blocks that touch the picture's right or bottom edge
-// take their averages from the reference functions.
+// many intervals for tables. Eight rows at a time, the fused deblocking + blending kernel
+// adds the blocks' rows to the picture: the grain of a whole stripe is never written out.
+// With int8 tables (8-bit grain always fits) the kernel loads each row's grain from the
+// blocks' pointers itself (on targets without such a form it gathers them into scratch);
+// int16 grain is copied into a band of grain rows first. 8-bit pictures with int8 tables
+// also get their whole blocks' tables from a kernel that sums them. Blocks that touch the
+// picture's right or bottom edge take their averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
 template <typename Table>
 alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};
@@ -147,10 +147,10 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
     // rdd5 has no grain at or past the right edge; both have two zero columns of padding,
     // which the deblocking of the last edge reads
     const int zero_from = rdd5 ? w : grain_width;
-    // The grain of up to kBandRows rows of one block row at a time, each row after one
-    // readable element, which the u8 kernel loads (column 0 is never filtered): a block's
-    // pointer is read once for all those rows, and the band stays small enough to be read
-    // back from the first-level cache.
+    // The grain of up to kBandRows rows of one block row at a time (for int8 grain, the
+    // kernels' scratch), each row after one readable element, which the u8 kernel loads
+    // (column 0 is never filtered): a block's pointer is read once for all those rows, and
+    // the band stays small enough to be read back from the first-level cache.
     const std::ptrdiff_t band_stride = grain_width + 3;
     Table* band;
     if constexpr (sizeof(Table) == 1)
@@ -162,50 +162,52 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
         const Table* const* block_row = blocks + (l0 / kBlock) * columns;
         const std::ptrdiff_t r0 = std::ptrdiff_t(l0 % kBlock) * pitch;
         const int band_rows = std::min(kBandRows, rows - l0);
-        if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 1) {
-            // 8-bit grain is deblocked and blended straight from the blocks' table rows
+        if constexpr (sizeof(Table) == 1) {
+            // int8 grain is deblocked and blended straight from the blocks' table rows
             const int y = y_top + l0;
             using Ahead = simd::NextStripeRow<Pixel>;
             const Ahead ahead = prefetch_next && y + band_rows - 1 + kRandBlock < h
                                     ? Ahead{src.row<const Pixel>(y + kRandBlock), dst.row<Pixel>(y + kRandBlock)}
                                     : Ahead{};
-            simd::deblock_blend_block_rows_u8_i8(src.row<const Pixel>(y), src.stride, dst.row<Pixel>(y), dst.stride,
-                                                 block_row, r0, pitch, band_rows, w, zero_from, kBlock, band - 1,
-                                                 ahead);
-            continue;
-        }
-        auto gather = [&](int n) {
-            for (int j = 0; j < columns; j++) {
-                const Table* b = block_row[j] + r0;
-                Table* out = band + j * kBlock;
-                for (int l = 0; l < n; l++)
-                    std::memcpy(out + l * band_stride, b + l * pitch, sizeof(Table) * kBlock);
+            if constexpr (sizeof(Pixel) == 1)
+                simd::deblock_blend_block_rows_u8_i8(src.row<const Pixel>(y), src.stride, dst.row<Pixel>(y),
+                                                     dst.stride, block_row, r0, pitch, band_rows, w, zero_from, kBlock,
+                                                     band - 1, ahead);
+            else  // strides in samples
+                simd::deblock_blend_block_rows_u16_i8(
+                    src.row<const Pixel>(y), src.stride / std::ptrdiff_t(sizeof(Pixel)), dst.row<Pixel>(y),
+                    dst.stride / std::ptrdiff_t(sizeof(Pixel)), block_row, r0, pitch, band_rows, w, zero_from, kBlock,
+                    bit_depth, band - 1, ahead);
+        } else {
+            // int16 grain (wide tables, or blocks scaled into scratch) goes through a band
+            auto gather = [&](int n) {
+                for (int j = 0; j < columns; j++) {
+                    const Table* b = block_row[j] + r0;
+                    Table* out = band + j * kBlock;
+                    for (int l = 0; l < n; l++)
+                        std::memcpy(out + l * band_stride, b + l * pitch, sizeof(Table) * kBlock);
+                }
+            };
+            if (band_rows == kBandRows)
+                gather(kBandRows);  // a constant count: the row loop unrolls
+            else
+                gather(band_rows);
+            for (int l = 0; l < band_rows; l++) {
+                Table* g = band + l * band_stride;
+                std::fill(g + zero_from, g + grain_width + 2, Table(0));
+                const int y = y_top + l0 + l;
+                // the same row of the next stripe, whose block sums come next (prefetched as this
+                // row is blended)
+                using Ahead = simd::NextStripeRow<Pixel>;
+                const Ahead ahead = prefetch_next && y + kRandBlock < h
+                                        ? Ahead{src.row<const Pixel>(y + kRandBlock), dst.row<Pixel>(y + kRandBlock)}
+                                        : Ahead{};
+                if constexpr (sizeof(Pixel) == 1)
+                    simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
+                else
+                    simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth,
+                                                ahead);
             }
-        };
-        if constexpr (sizeof(Table) == 1)
-            simd::gather_block_bands_i8(block_row, r0, columns, kBlock, band_rows, pitch, band, band_stride);
-        else if (band_rows == kBandRows)
-            gather(kBandRows);  // a constant count: the row loop unrolls
-        else
-            gather(band_rows);
-        for (int l = 0; l < band_rows; l++) {
-            Table* g = band + l * band_stride;
-            std::fill(g + zero_from, g + grain_width + 2, Table(0));
-            const int y = y_top + l0 + l;
-            // the same row of the next stripe, whose block sums come next (prefetched as this
-            // row is blended)
-            using Ahead = simd::NextStripeRow<Pixel>;
-            const Ahead ahead = prefetch_next && y + kRandBlock < h
-                                    ? Ahead{src.row<const Pixel>(y + kRandBlock), dst.row<Pixel>(y + kRandBlock)}
-                                    : Ahead{};
-            // (8-bit pictures with int8 grain took the branch above)
-            if constexpr (sizeof(Pixel) == 1 && sizeof(Table) == 2)
-                simd::deblock_blend_row_u8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, ahead);
-            else if constexpr (sizeof(Pixel) == 2 && sizeof(Table) == 1)
-                simd::deblock_blend_row_u16_i8(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth,
-                                               ahead);
-            else if constexpr (sizeof(Pixel) == 2)
-                simd::deblock_blend_row_u16(src.row<const Pixel>(y), dst.row<Pixel>(y), g, w, kBlock, bit_depth, ahead);
         }
     }
 }

@@ -19,7 +19,11 @@ using namespace filmgrain;
 
 namespace {
 
-class FgcSimdEquivalence : public test_support::ForcedSimdTarget<20261124u> {};
+class FgcSimdEquivalence : public test_support::ForcedSimdTarget<20261124u> {
+protected:
+    template <typename Pixel>
+    void check_rows_from_blocks(int iterations);
+};
 
 // One grain row as the optimized stripe holds it: element 0 is the readable element before
 // column 0 (random: the kernels must not use it), then width + 1 grain values.
@@ -98,14 +102,19 @@ TEST_P(FgcSimdEquivalence, GatherBlockBands) {
 // Rows straight from block pointers: the reference is the element-wise gather, the zeros
 // from grain_end (rdd5: the picture's width; vtm: past the last block) and the reference
 // deblocking and blending of each row. Tables hold random int8 rows of pitch 64, as the
-// scaled tables do; grain_end takes the values the stripe passes and others.
-TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) {
+// scaled tables do; grain_end takes the values the stripe passes and others. 16-bit samples
+// at bit depths 9 to 16 (the AVX3 form takes 8x8 blocks up to 12 bits, the others the
+// generic form).
+template <typename Pixel>
+void FgcSimdEquivalence::check_rows_from_blocks(int iterations) {
     constexpr std::ptrdiff_t kPitch = 64;
     std::vector<int8_t> table(64 * 64 * 4);
     for (auto& v : table)  // the extremes often
         v = int8_t(uniform(0, 9) == 0 ? (uniform(0, 1) ? 127 : -128) : uniform(-128, 127));
-    for (int iter = 0; iter < 2000; iter++) {
+    for (int iter = 0; iter < iterations; iter++) {
         const int bs = uniform(0, 3) ? 8 : 8 << uniform(1, 2);
+        const int bd = sizeof(Pixel) == 1 ? 8 : uniform(9, 16);
+        const int max_value = (1 << bd) - 1;
         const int width = uniform(0, 3) ? uniform(1, 300) : 64 * uniform(1, 6) + uniform(-1, 1);
         const int rows = uniform(1, 8);
         const int padded = (width + bs - 1) / bs * bs + (uniform(0, 1) ? bs : 0);  // the stripe's grain width
@@ -123,30 +132,39 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) {
                 blocks.push_back(blocks.back() + bs);
             else
                 blocks.push_back(table.data() + uniform(0, last - bs));
-        std::vector<uint8_t> src(std::size_t(src_stride) * rows + 1);
-        for (auto& v : src) v = uint8_t(uniform(0, 3) == 0 ? 255 * uniform(0, 1) : uniform(0, 255));
-        std::vector<uint8_t> want(std::size_t(dst_stride) * rows + 1, 0xA5), got(want);
+        std::vector<Pixel> src(std::size_t(src_stride) * rows + 1);
+        for (auto& v : src) v = Pixel(uniform(0, 3) == 0 ? max_value * uniform(0, 1) : uniform(0, max_value));
+        std::vector<Pixel> want(std::size_t(dst_stride) * rows + 1, Pixel(0xA5A5)), got(want);
         for (int r = 0; r < rows; r++) {
             std::vector<int32_t> grain(std::size_t(padded) + 2, 0);
             for (int x = 0; x < std::min(grain_end, padded); x++)
                 grain[std::size_t(x)] = blocks[std::size_t(x / bs)][offset + r * kPitch + x % bs];
             fgc::deblock_stripe_vertical_edges(grain.data(), padded + 2, 1, width, bs);
-            fgc::blend_row_additive<uint8_t>(src.data() + r * src_stride, want.data() + r * dst_stride, grain.data(),
-                                             width, 8);
+            fgc::blend_row_additive<Pixel>(src.data() + r * src_stride, want.data() + r * dst_stride, grain.data(),
+                                           width, bd);
         }
         // scratch of just the size the kernel asks for (the address sanitizer catches more)
         std::vector<int8_t> row(fgc::simd::deblock_blend_block_rows_scratch(rows, width, grain_end, bs),
                                 int8_t(uniform(-128, 127)));
         // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect
-        test_support::PrefetchedRows<uint8_t> ahead(src.size());
+        test_support::PrefetchedRows<Pixel> ahead(src.size());
         const auto next = ahead.pick([&] { return uniform(0, 1) == 1; });
-        fgc::simd::deblock_blend_block_rows_u8_i8(src.data(), src_stride, got.data(), dst_stride, blocks.data(), offset,
-                                                  kPitch, rows, width, grain_end, bs, row.data(), next);
+        if constexpr (sizeof(Pixel) == 1)
+            fgc::simd::deblock_blend_block_rows_u8_i8(src.data(), src_stride, got.data(), dst_stride, blocks.data(),
+                                                      offset, kPitch, rows, width, grain_end, bs, row.data(), next);
+        else
+            fgc::simd::deblock_blend_block_rows_u16_i8(src.data(), src_stride, got.data(), dst_stride, blocks.data(),
+                                                       offset, kPitch, rows, width, grain_end, bs, bd, row.data(), next);
         ASSERT_TRUE(ahead.untouched()) << "a prefetched row was written";
         ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " rows " << rows << " bs " << bs
-                             << " grain_end " << grain_end << " (bytes between and past the rows must stay untouched)";
+                             << " bit depth " << bd << " grain_end " << grain_end
+                             << " (samples between and past the rows must stay untouched)";
     }
 }
+
+TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) { check_rows_from_blocks<uint8_t>(2000); }
+
+TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks16Bit) { check_rows_from_blocks<uint16_t>(2000); }
 
 // Each whole block's table pointer from its sample sum: the reference is the element-wise
 // sum, shift, clamp and look-up. Samples are often all 255 (the largest sums) and the shift

@@ -77,6 +77,13 @@ void deblock_blend_block_rows_u8_i8(const uint8_t* src, std::ptrdiff_t src_strid
                                     std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
                                     NextStripeRow<uint8_t> ahead = {});
 
+// The same for 16-bit samples with deblock_blend_row_u16_i8's arithmetic; the strides are in
+// samples, and `row` is the same scratch (of int8 grain).
+void deblock_blend_block_rows_u16_i8(const uint16_t* src, std::ptrdiff_t src_stride, uint16_t* dst,
+                                     std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                     std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int bit_depth,
+                                     int8_t* row, NextStripeRow<uint16_t> ahead = {});
+
 // Rows of one block row of the stripe: for each of `count` blocks, `rows` rows of `block`
 // values (8, 16 or 32) that lie `pitch` apart from blocks[j] + offset, copied to
 // out + j * block, rows `out_stride` apart. Twin of the element-wise copy.

@@ -365,12 +365,14 @@ void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int 
 // The generic form: the rows gathered into `row` block by block, each block's pointer read
 // once for all of them (gathered row by row, the pointer loads cost a frame 5 % more on a
 // Zen 3: 1080p 8-bit rdd5, one thread, median of 12 interleaved pairs), then each row zeroed
-// from `end` and blended. Every row has one element before column 0, which
-// DeblockBlendRowU8I8 reads and never uses (the previous row's last, or row[0]).
-void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
-                                    std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
-                                    std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int8_t* row,
-                                    NextStripeRow<uint8_t> ahead) {
+// from `end` and blended by blend_row(src row, dst row, grain row, prefetch rows). Every row
+// has one element before column 0, which DeblockBlendRowU8I8 reads and never uses (the
+// previous row's last, or row[0]).
+template <typename Pixel, typename BlendRow>
+void DeblockBlendBlockRowsViaBuffer(const Pixel* src, std::ptrdiff_t src_stride, Pixel* dst, std::ptrdiff_t dst_stride,
+                                    const int8_t* const* blocks, std::ptrdiff_t offset, std::ptrdiff_t pitch, int rows,
+                                    int width, int grain_end, int block, int8_t* row, NextStripeRow<Pixel> ahead,
+                                    BlendRow blend_row) {
     int8_t* g = row + 1;
     const int end = std::min(grain_end, width + 1);
     const int count = (end + block - 1) / block;
@@ -378,8 +380,7 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
     GatherBlockBandsI8(blocks, offset, count, block, rows, pitch, g, stride);
     for (int r = 0; r < rows; r++, g += stride) {
         std::fill(g + end, g + width + 2, int8_t(0));
-        DeblockBlendRowU8I8(src + r * src_stride, dst + r * dst_stride, g, width, block,
-                            ahead.below(r, src_stride, dst_stride));
+        blend_row(src + r * src_stride, dst + r * dst_stride, g, ahead.below(r, src_stride, dst_stride));
     }
 }
 
@@ -387,6 +388,7 @@ void DeblockBlendBlockRowsViaBuffer(const uint8_t* src, std::ptrdiff_t src_strid
 #include "fgc/simd/block_sums_u16_avx512-inl.h"
 #include "fgc/simd/block_tables_u8_avx2-inl.h"
 #include "fgc/simd/block_rows_u8_avx512-inl.h"
+#include "fgc/simd/block_rows_u16_avx512-inl.h"
 
 void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
@@ -398,7 +400,24 @@ void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, ui
                                               grain_end, ahead);
 #endif
     DeblockBlendBlockRowsViaBuffer(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width, grain_end,
-                                   block, row, ahead);
+                                   block, row, ahead, [&](const uint8_t* s, uint8_t* d, const int8_t* g, auto next) {
+                                       DeblockBlendRowU8I8(s, d, g, width, block, next);
+                                   });
+}
+
+void DeblockBlendBlockRowsU16I8(const uint16_t* src, std::ptrdiff_t src_stride, uint16_t* dst,
+                                std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int bit_depth,
+                                int8_t* row, NextStripeRow<uint16_t> ahead) {
+#if HWY_TARGET == HWY_AVX3
+    if (block == 8 && bit_depth <= 12)
+        return avx512::DeblockBlendBlockRows8U16(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
+                                                 grain_end, bit_depth, ahead);
+#endif
+    DeblockBlendBlockRowsViaBuffer(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width, grain_end,
+                                   block, row, ahead, [&](const uint16_t* s, uint16_t* d, const int8_t* g, auto next) {
+                                       DeblockBlendRowU16I8(s, d, g, width, block, bit_depth, next);
+                                   });
 }
 
 void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
@@ -494,6 +513,7 @@ HWY_EXPORT(DeblockBlendRowU8);
 HWY_EXPORT(DeblockBlendRowU16);
 HWY_EXPORT(DeblockBlendRowU8I8);
 HWY_EXPORT(GatherBlockBandsI8);
+HWY_EXPORT(DeblockBlendBlockRowsU16I8);
 HWY_EXPORT(DeblockBlendRowU16I8);
 HWY_EXPORT(DeblockBlendBlockRowsU8I8);
 HWY_EXPORT(BlockSumsU8);
@@ -529,6 +549,13 @@ void deblock_blend_block_rows_u8_i8(const uint8_t* src, std::ptrdiff_t src_strid
                                     NextStripeRow<uint8_t> ahead) {
     HWY_DYNAMIC_DISPATCH(DeblockBlendBlockRowsU8I8)(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows,
                                                     width, grain_end, block, row, ahead);
+}
+void deblock_blend_block_rows_u16_i8(const uint16_t* src, std::ptrdiff_t src_stride, uint16_t* dst,
+                                     std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                     std::ptrdiff_t pitch, int rows, int width, int grain_end, int block, int bit_depth,
+                                     int8_t* row, NextStripeRow<uint16_t> ahead) {
+    HWY_DYNAMIC_DISPATCH(DeblockBlendBlockRowsU16I8)(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows,
+                                                     width, grain_end, block, bit_depth, row, ahead);
 }
 void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU8)(src, stride, rows, width, block, sums);

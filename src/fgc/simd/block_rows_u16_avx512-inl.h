@@ -1,0 +1,140 @@
+// 16-bit FGC stripe kernel for 8x8 blocks with int8 grain (the narrow scaled tables) and bit
+// depths up to 12, for the AVX3 target of fgc_kernels_hwy.cpp; included inside that file's
+// HWY_NAMESPACE, on the AVX3 pass only. Twin of the generic form there
+// (DeblockBlendBlockRowsU16ViaBuffer: GatherBlockBandsI8, then DeblockBlendRowU16Narrow per
+// row), bit-equal to it and to the reference stages (fgc_simd_equivalence_test).
+//
+// Why a separate form: the generic one copies every row of grain into a band and reads it
+// back three times (the [1 2 1] neighbours); on the Zen 5 EPYC (1080p 10-bit rdd5, one
+// thread) the copy alone was 15 % of the frame. Here a vector is four 8x8 blocks side by
+// side, 32 samples: each row is assembled in registers from the blocks' table pointers, read
+// once for all the rows, and widened to 16-bit lanes, as block_rows_u8_avx512-inl.h does with
+// eight blocks of bytes.
+#if HWY_TARGET == HWY_AVX3
+
+namespace avx512 {
+
+// Strides are in samples. The arithmetic is DeblockBlendRowU16Narrow's (up to 12 bits the
+// [1 2 1] sum, the shifted grain and the saturating add all fit int16 lanes).
+inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_stride, uint16_t* dst,
+                                      std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
+                                      std::ptrdiff_t pitch, int rows, int width, int grain_end, int bit_depth,
+                                      NextStripeRow<uint16_t> ahead) {
+    auto first_n = [](int len) -> __mmask32 {
+        return len <= 0 ? 0 : len >= 32 ? ~__mmask32(0) : (__mmask32(1) << len) - 1;
+    };
+    auto qword = [](const int8_t* p) {
+        int64_t v;
+        std::memcpy(&v, p, sizeof(v));
+        return v;
+    };
+    const int end = std::min(grain_end, width + 1);  // columns that can reach the output; 0 from here
+    const __m512i zero = _mm512_setzero_si512(), vmax = _mm512_set1_epi16(int16_t((1 << bit_depth) - 1));
+    const __m128i count = _mm_cvtsi32_si128(bit_depth - 8);
+    // The last and first column of every block. Column 0 has no edge on its left, and no
+    // edge lies at `width` for the last column to be left of.
+    auto filtered_at = [&](int x) {
+        __mmask32 m = 0x81818181u;
+        if (x == 0) m &= ~__mmask32(1);
+        if (x + 32 >= width) m &= first_n(width - 1 - x) | 0x01010101u;
+        return m;
+    };
+    auto blend = [&](int x, int r, __m512i a, __m512i b, __m512i c, __mmask32 filtered) {
+        const __m512i f = _mm512_srai_epi16(_mm512_add_epi16(_mm512_add_epi16(a, c), _mm512_slli_epi16(b, 1)), 2);
+        const __m512i g = _mm512_sll_epi16(_mm512_mask_blend_epi16(filtered, b, f), count);
+        const uint16_t* s = src + r * src_stride + x;
+        uint16_t* d = dst + r * dst_stride + x;
+        if (x + 32 <= width) {
+            const __m512i v = _mm512_adds_epi16(_mm512_loadu_si512(s), g);
+            _mm512_storeu_si512(d, _mm512_min_epi16(_mm512_max_epi16(v, zero), vmax));
+        } else {
+            const __mmask32 inside = first_n(width - x);
+            const __m512i v = _mm512_adds_epi16(_mm512_maskz_loadu_epi16(inside, s), g);
+            _mm512_mask_storeu_epi16(d, inside, _mm512_min_epi16(_mm512_max_epi16(v, zero), vmax));
+        }
+        PrefetchAhead(ahead.below(r, src_stride, dst_stride), x);
+    };
+    // The rows of columns x .. x + 31, each assembled by row_at(offset of the row) as 32 bytes
+    // and widened; `left` and `right` are the blocks before and after the vector, read where
+    // has_left / has_right.
+    auto rows_of = [&](int x, auto has_left, auto has_right, const int8_t* left, const int8_t* right,
+                       __mmask32 filtered, auto row_at) {
+        for (int r = 0; r < rows; r++) {
+            const std::ptrdiff_t o = r * pitch;
+            const __m512i b = _mm512_cvtepi8_epi16(row_at(o));
+            // column x - 1 is the last sample of the block before (zero at column 0), column
+            // x + 32 the first of the block after: widened, each 128-bit lane holds them at its
+            // top and bottom word
+            const __m512i before =
+                has_left ? _mm512_cvtepi8_epi16(_mm256_set1_epi64x(qword(left + o))) : _mm512_setzero_si512();
+            const __m512i after =
+                has_right ? _mm512_cvtepi8_epi16(_mm256_set1_epi64x(qword(right + o))) : _mm512_setzero_si512();
+            // the row moved one sample right and left across the whole vector: valignq lines up
+            // each 128-bit lane with its neighbour lane, vpalignr takes the one word over from it
+            const __m512i a = _mm512_alignr_epi8(b, _mm512_alignr_epi64(b, before, 6), 14);
+            const __m512i c = _mm512_alignr_epi8(_mm512_alignr_epi64(after, b, 2), b, 2);
+            blend(x, r, a, b, c, filtered);
+        }
+    };
+    // Columns x .. x + 31, all before `end`; the block before them (has_left) and the one
+    // after (has_right) are read too. `joined`: blocks 0, 1 and blocks 2, 3 each lie side by
+    // side in one table (the two halves of a 16x16 block in one interval), 16 bytes read at once.
+    auto whole = [&](int x, auto has_left, auto has_right) {
+        const int8_t* const* bl = blocks + x / 8;
+        const int8_t* p[4];
+        for (int k = 0; k < 4; k++) p[k] = bl[k] + offset;
+        const int8_t* left = has_left ? bl[-1] + offset : nullptr;
+        const int8_t* right = has_right ? bl[4] + offset : nullptr;
+        const __mmask32 filtered = filtered_at(x);
+        if (p[1] == p[0] + 8 && p[3] == p[2] + 8)
+            rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
+                return _mm256_inserti128_si256(
+                    _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p[0] + o))),
+                    _mm_loadu_si128(reinterpret_cast<const __m128i*>(p[2] + o)), 1);
+            });
+        else
+            rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
+                auto pair = [&](int k) {
+                    return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k] + o)),
+                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k + 1] + o)));
+                };
+                return _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0)), pair(2), 1);
+            });
+    };
+    // Any other columns (past `end` in part or whole): through a buffer, element by element.
+    auto partial = [&](int x) {
+        const __mmask32 filtered = filtered_at(x);
+        HWY_ALIGN int8_t g[32 + 2];
+        auto widened = [&](int at) {
+            return _mm512_cvtepi8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(g + at)));
+        };
+        for (int r = 0; r < rows; r++) {
+            const std::ptrdiff_t o = offset + r * pitch;
+            for (int i = 0; i < 34; i++) {
+                const int col = x - 1 + i;
+                g[i] = col >= 0 && col < end ? blocks[col / 8][o + col % 8] : int8_t(0);
+            }
+            blend(x, r, widened(0), widened(1), widened(2), filtered);
+        }
+    };
+    using No = std::false_type;
+    using Yes = std::true_type;
+    int x = 0;
+    if (width <= 0) return;
+    if (32 < end)
+        whole(0, No{}, Yes{});
+    else if (32 == end)
+        whole(0, No{}, No{});
+    else
+        partial(0);
+    for (x = 32; x < width && x + 32 < end; x += 32) whole(x, Yes{}, Yes{});
+    if (x < width && x + 32 == end) {
+        whole(x, Yes{}, No{});
+        x += 32;
+    }
+    for (; x < width; x += 32) partial(x);
+}
+
+}  // namespace avx512
+
+#endif  // HWY_TARGET == HWY_AVX3
