@@ -103,8 +103,8 @@ TEST_P(FgcSimdEquivalence, GatherBlockBands) {
 // from grain_end (rdd5: the picture's width; vtm: past the last block) and the reference
 // deblocking and blending of each row. Tables hold random int8 rows of pitch 64, as the
 // scaled tables do; grain_end takes the values the stripe passes and others. 16-bit samples
-// at bit depths 9 to 16 (the AVX3 form takes 8x8 blocks up to 12 bits, the others the
-// generic form).
+// at bit depths 9 to 16 (the AVX3 form takes 8x8 and 16x16 blocks up to 12 bits, the others
+// the generic form).
 template <typename Pixel>
 void FgcSimdEquivalence::check_rows_from_blocks(int iterations) {
     constexpr std::ptrdiff_t kPitch = 64;
@@ -112,7 +112,8 @@ void FgcSimdEquivalence::check_rows_from_blocks(int iterations) {
     for (auto& v : table)  // the extremes often
         v = int8_t(uniform(0, 9) == 0 ? (uniform(0, 1) ? 127 : -128) : uniform(-128, 127));
     for (int iter = 0; iter < iterations; iter++) {
-        const int bs = uniform(0, 3) ? 8 : 8 << uniform(1, 2);
+        // 8 and 16 (the AVX3 forms) most often
+        const int pick = uniform(0, 7), bs = pick < 4 ? 8 : pick < 7 ? 16 : 32;
         const int bd = sizeof(Pixel) == 1 ? 8 : uniform(9, 16);
         const int max_value = (1 << bd) - 1;
         const int width = uniform(0, 3) ? uniform(1, 300) : 64 * uniform(1, 6) + uniform(-1, 1);

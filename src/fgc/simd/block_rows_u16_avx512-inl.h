@@ -1,4 +1,4 @@
-// 16-bit FGC stripe kernel for 8x8 blocks with int8 grain (the narrow scaled tables) and bit
+// 16-bit FGC stripe kernel for 8x8 and 16x16 blocks with int8 grain (the narrow scaled tables) and bit
 // depths up to 12, for the AVX3 target of fgc_kernels_hwy.cpp; included inside that file's
 // HWY_NAMESPACE, on the AVX3 pass only. Twin of the generic form there
 // (DeblockBlendBlockRowsU16ViaBuffer: GatherBlockBandsI8, then DeblockBlendRowU16Narrow per
@@ -6,17 +6,18 @@
 //
 // Why a separate form: the generic one copies every row of grain into a band and reads it
 // back three times (the [1 2 1] neighbours); on the Zen 5 EPYC (1080p 10-bit rdd5, one
-// thread) the copy alone was 15 % of the frame. Here a vector is four 8x8 blocks side by
-// side, 32 samples: each row is assembled in registers from the blocks' table pointers, read
-// once for all the rows, and widened to 16-bit lanes, as block_rows_u8_avx512-inl.h does with
-// eight blocks of bytes.
+// thread) the copy alone was 15 % of the frame (17 % with vtm's 16x16 blocks). Here a vector
+// is four 8x8 blocks or two 16x16 blocks side by side, 32 samples: each row is assembled in
+// registers from the blocks' table pointers, read once for all the rows, and widened to
+// 16-bit lanes, as block_rows_u8_avx512-inl.h does with bytes.
 #if HWY_TARGET == HWY_AVX3
 
 namespace avx512 {
 
 // Strides are in samples. The arithmetic is DeblockBlendRowU16Narrow's (up to 12 bits the
 // [1 2 1] sum, the shifted grain and the saturating add all fit int16 lanes).
-inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_stride, uint16_t* dst,
+template <int kBlock>
+inline void DeblockBlendBlockRowsU16(const uint16_t* src, std::ptrdiff_t src_stride, uint16_t* dst,
                                       std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
                                       std::ptrdiff_t pitch, int rows, int width, int grain_end, int bit_depth,
                                       NextStripeRow<uint16_t> ahead) {
@@ -33,10 +34,11 @@ inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_st
     const __m128i count = _mm_cvtsi32_si128(bit_depth - 8);
     // The last and first column of every block. Column 0 has no edge on its left, and no
     // edge lies at `width` for the last column to be left of.
+    constexpr __mmask32 kFirstColumns = kBlock == 8 ? 0x01010101u : 0x00010001u;
     auto filtered_at = [&](int x) {
-        __mmask32 m = 0x81818181u;
+        __mmask32 m = kFirstColumns | kFirstColumns << (kBlock - 1);
         if (x == 0) m &= ~__mmask32(1);
-        if (x + 32 >= width) m &= first_n(width - 1 - x) | 0x01010101u;
+        if (x + 32 >= width) m &= first_n(width - 1 - x) | kFirstColumns;
         return m;
     };
     auto blend = [&](int x, int r, __m512i a, __m512i b, __m512i c, __mmask32 filtered) {
@@ -66,7 +68,7 @@ inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_st
             // x + 32 the first of the block after: widened, each 128-bit lane holds them at its
             // top and bottom word
             const __m512i before =
-                has_left ? _mm512_cvtepi8_epi16(_mm256_set1_epi64x(qword(left + o))) : _mm512_setzero_si512();
+                has_left ? _mm512_cvtepi8_epi16(_mm256_set1_epi64x(qword(left + o + kBlock - 8))) : _mm512_setzero_si512();
             const __m512i after =
                 has_right ? _mm512_cvtepi8_epi16(_mm256_set1_epi64x(qword(right + o))) : _mm512_setzero_si512();
             // the row moved one sample right and left across the whole vector: valignq lines up
@@ -77,22 +79,26 @@ inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_st
         }
     };
     // Columns x .. x + 31, all before `end`; the block before them (has_left) and the one
-    // after (has_right) are read too. `joined`: blocks 0, 1 and blocks 2, 3 each lie side by
-    // side in one table (the two halves of a 16x16 block in one interval), 16 bytes read at once.
+    // after (has_right) are read too. A 16x16 block's row is one 16-byte load, and so is a
+    // pair of 8x8 blocks where they are `joined`: blocks 0, 1 and blocks 2, 3 each lie side by
+    // side in one table (the two halves of a 16x16 block in one interval).
     auto whole = [&](int x, auto has_left, auto has_right) {
-        const int8_t* const* bl = blocks + x / 8;
-        const int8_t* p[4];
-        for (int k = 0; k < 4; k++) p[k] = bl[k] + offset;
+        constexpr int kCount = 32 / kBlock;
+        const int8_t* const* bl = blocks + x / kBlock;
+        const int8_t* p[kCount];
+        for (int k = 0; k < kCount; k++) p[k] = bl[k] + offset;
         const int8_t* left = has_left ? bl[-1] + offset : nullptr;
-        const int8_t* right = has_right ? bl[4] + offset : nullptr;
+        const int8_t* right = has_right ? bl[kCount] + offset : nullptr;
         const __mmask32 filtered = filtered_at(x);
-        if (p[1] == p[0] + 8 && p[3] == p[2] + 8)
-            rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
-                return _mm256_inserti128_si256(
-                    _mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p[0] + o))),
-                    _mm_loadu_si128(reinterpret_cast<const __m128i*>(p[2] + o)), 1);
-            });
-        else
+        auto load16 = [](const int8_t* at) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(at)); };
+        auto joined_rows = [&](std::ptrdiff_t o) {
+            return _mm256_inserti128_si256(_mm256_castsi128_si256(load16(p[0] + o)), load16(p[kCount / 2] + o), 1);
+        };
+        if constexpr (kBlock == 16) {
+            rows_of(x, has_left, has_right, left, right, filtered, joined_rows);
+        } else if (p[1] == p[0] + 8 && p[3] == p[2] + 8) {
+            rows_of(x, has_left, has_right, left, right, filtered, joined_rows);
+        } else {
             rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
                 auto pair = [&](int k) {
                     return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k] + o)),
@@ -100,6 +106,7 @@ inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_st
                 };
                 return _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0)), pair(2), 1);
             });
+        }
     };
     // Any other columns (past `end` in part or whole): through a buffer, element by element.
     auto partial = [&](int x) {
@@ -112,7 +119,7 @@ inline void DeblockBlendBlockRows8U16(const uint16_t* src, std::ptrdiff_t src_st
             const std::ptrdiff_t o = offset + r * pitch;
             for (int i = 0; i < 34; i++) {
                 const int col = x - 1 + i;
-                g[i] = col >= 0 && col < end ? blocks[col / 8][o + col % 8] : int8_t(0);
+                g[i] = col >= 0 && col < end ? blocks[col / kBlock][o + col % kBlock] : int8_t(0);
             }
             blend(x, r, widened(0), widened(1), widened(2), filtered);
         }

@@ -1,4 +1,4 @@
-// 8-bit FGC stripe kernels for 8x8 blocks in whole 512-bit vectors, for the AVX3 target of
+// 8-bit FGC stripe kernels for 8x8 and 16x16 blocks in whole 512-bit vectors, for the AVX3 target of
 // fgc_kernels_hwy.cpp; included inside that file's HWY_NAMESPACE, on the AVX3 pass only.
 // Twins of the generic forms there (DeblockBlendBlockRowsViaBuffer, BlockSumsU8 plus the
 // table look-up), bit-equal to them and to the reference stages (fgc_simd_equivalence_test).
@@ -11,13 +11,15 @@
 
 namespace avx512 {
 
-// 8-sample blocks, 64 columns per vector: each 64-bit lane is one block's row, assembled in
-// registers from the block pointers (vpgatherqq was slower on Zen 5), so no row of grain
-// goes through memory; a vector's 8 pointers are read once for all the rows. The
-// neighbours of the [1 2 1] filter are the row shifted by one byte, made by 64-bit lane
-// shifts, with the byte that crosses a lane (or the vector) brought in by valignq from the
-// row of the block before or after the vector. The arithmetic is DeblockBlendRowU8I8's.
-inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
+// 8- or 16-sample blocks, 64 columns per vector: each 64- or 128-bit lane is one block's
+// row, assembled in registers from the block pointers (vpgatherqq was slower on Zen 5), so
+// no row of grain goes through memory; a vector's 8 or 4 pointers are read once for all the
+// rows. The neighbours of the [1 2 1] filter are the row shifted by one byte across the
+// vector, with the byte that crosses it brought in from the row of the block before or
+// after the vector. The arithmetic is DeblockBlendRowU8I8's. (vtm takes 16x16 blocks from
+// 1920x1080 up, where the generic form's band copy was a third of the frame on the Zen 5.)
+template <int kBlock>
+inline void DeblockBlendBlockRows(const uint8_t* src, std::ptrdiff_t src_stride, uint8_t* dst,
                                    std::ptrdiff_t dst_stride, const int8_t* const* blocks, std::ptrdiff_t offset,
                                    std::ptrdiff_t pitch, int rows, int width, int grain_end,
                                    NextStripeRow<uint8_t> ahead) {
@@ -34,10 +36,11 @@ inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride
     const __m512i flip = _mm512_set1_epi8(0x7F), bias = _mm512_set1_epi8(char(0x80));
     // The last and first column of every block. Column 0 has no edge on its left, and no
     // edge lies at `width` for the last column to be left of.
+    constexpr __mmask64 kFirstColumns = kBlock == 8 ? 0x0101010101010101ull : 0x0001000100010001ull;
     auto filtered_at = [&](int x) {
-        __mmask64 m = 0x8181818181818181ull;
+        __mmask64 m = kFirstColumns | kFirstColumns << (kBlock - 1);
         if (x == 0) m &= ~__mmask64(1);
-        if (x + 64 >= width) m &= first_n(width - 1 - x) | 0x0101010101010101ull;
+        if (x + 64 >= width) m &= first_n(width - 1 - x) | kFirstColumns;
         return m;
     };
     auto blend = [&](int x, int r, __m512i a, __m512i b, __m512i c, __mmask64 filtered) {
@@ -63,9 +66,10 @@ inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride
         for (int r = 0; r < rows; r++) {
             const std::ptrdiff_t o = r * pitch;
             const __m512i b = row_at(o);
-            // column x - 1 is the top byte of the block before (zero at column 0), column x + 64
-            // the low byte of the block after
-            const __m512i before = has_left ? _mm512_set1_epi64(qword(left + o)) : _mm512_setzero_si512();
+            // column x - 1 is the last byte of the block before (zero at column 0), column x + 64
+            // the first byte of the block after
+            const __m512i before =
+                has_left ? _mm512_set1_epi64(qword(left + o + kBlock - 8)) : _mm512_setzero_si512();
             const __m512i after = has_right ? _mm512_set1_epi64(qword(right + o)) : _mm512_setzero_si512();
             // the row moved one byte right and left across the whole vector: valignq lines up each
             // 128-bit lane with its neighbour lane, vpalignr takes the one byte over from it
@@ -75,37 +79,41 @@ inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride
         }
     };
     // Columns x .. x + 63, all before `end`; the block before them (has_left) and the one
-    // after (has_right) are read too. `joined`: each pair of blocks k, k + 1 (k even) lies side
-    // by side in one table, 16 bytes read at once. That is the common case for luma, where the
-    // two 8x8 blocks of a 16x16 block share its offset (clause 7's randomization) and, in one
-    // intensity interval, its table; a row then takes 4 loads and 3 shuffles instead of 8 and 7.
+    // after (has_right) are read too. A 16x16 block's row is one 16-byte load. 8x8 blocks are
+    // `joined` where each pair of blocks k, k + 1 (k even) lies side by side in one table, 16
+    // bytes read at once. That is the common case for luma, where the two 8x8 blocks of a
+    // 16x16 block share its offset (clause 7's randomization) and, in one intensity interval,
+    // its table; a row then takes 4 loads and 3 shuffles instead of 8 and 7.
     auto whole = [&](int x, auto has_left, auto has_right) {
-        const int8_t* const* bl = blocks + x / 8;
-        const int8_t* p[8];
-        for (int k = 0; k < 8; k++) p[k] = bl[k] + offset;
+        constexpr int kCount = 64 / kBlock;
+        const int8_t* const* bl = blocks + x / kBlock;
+        const int8_t* p[kCount];
+        for (int k = 0; k < kCount; k++) p[k] = bl[k] + offset;
         const int8_t* left = has_left ? bl[-1] + offset : nullptr;
-        const int8_t* right = has_right ? bl[8] + offset : nullptr;
+        const int8_t* right = has_right ? bl[kCount] + offset : nullptr;
         const __mmask64 filtered = filtered_at(x);
-        // the row at offset o from the 16 bytes of each pair k, k + 1 (k even)
-        auto row_of_pairs = [](std::ptrdiff_t o, auto pair) {
-            const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(0, o)), pair(2, o), 1);
-            const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(pair(4, o)), pair(6, o), 1);
+        // the row at offset o from its four quarters of 16 bytes, quarter(q, o)
+        auto row_of_quarters = [](std::ptrdiff_t o, auto quarter) {
+            const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(quarter(0, o)), quarter(1, o), 1);
+            const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(quarter(2, o)), quarter(3, o), 1);
             return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
         };
-        const bool joined = p[1] == p[0] + 8 && p[3] == p[2] + 8 && p[5] == p[4] + 8 && p[7] == p[6] + 8;
-        if (joined)
+        auto load16 = [](const int8_t* at) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(at)); };
+        auto from_quarters = [&](std::ptrdiff_t o) {
+            return row_of_quarters(o, [&](int q, std::ptrdiff_t r) { return load16(p[q * kCount / 4] + r); });
+        };
+        if constexpr (kBlock == 16) {
+            rows_of(x, has_left, has_right, left, right, filtered, from_quarters);
+        } else if (p[1] == p[0] + 8 && p[3] == p[2] + 8 && p[5] == p[4] + 8 && p[7] == p[6] + 8) {
+            rows_of(x, has_left, has_right, left, right, filtered, from_quarters);
+        } else {
             rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
-                return row_of_pairs(o, [&](int k, std::ptrdiff_t r) {
-                    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p[k] + r));
+                return row_of_quarters(o, [&](int q, std::ptrdiff_t r) {
+                    return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[2 * q] + r)),
+                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[2 * q + 1] + r)));
                 });
             });
-        else
-            rows_of(x, has_left, has_right, left, right, filtered, [&](std::ptrdiff_t o) {
-                return row_of_pairs(o, [&](int k, std::ptrdiff_t r) {
-                    return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k] + r)),
-                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p[k + 1] + r)));
-                });
-            });
+        }
     };
     // Any other columns (past `end` in part or whole): through a buffer, element by element.
     auto partial = [&](int x) {
@@ -115,7 +123,7 @@ inline void DeblockBlendBlockRows8(const uint8_t* src, std::ptrdiff_t src_stride
             const std::ptrdiff_t o = offset + r * pitch;
             for (int i = 0; i < 66; i++) {
                 const int col = x - 1 + i;
-                g[i] = col >= 0 && col < end ? blocks[col / 8][o + col % 8] : int8_t(0);
+                g[i] = col >= 0 && col < end ? blocks[col / kBlock][o + col % kBlock] : int8_t(0);
             }
             blend(x, r, _mm512_loadu_si512(g), _mm512_loadu_si512(g + 1), _mm512_loadu_si512(g + 2), filtered);
         }

@@ -396,8 +396,11 @@ void DeblockBlendBlockRowsU8I8(const uint8_t* src, std::ptrdiff_t src_stride, ui
                                NextStripeRow<uint8_t> ahead) {
 #if HWY_TARGET == HWY_AVX3
     if (block == 8)
-        return avx512::DeblockBlendBlockRows8(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
-                                              grain_end, ahead);
+        return avx512::DeblockBlendBlockRows<8>(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
+                                                grain_end, ahead);
+    if (block == 16)
+        return avx512::DeblockBlendBlockRows<16>(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
+                                                 grain_end, ahead);
 #endif
     DeblockBlendBlockRowsViaBuffer(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width, grain_end,
                                    block, row, ahead, [&](const uint8_t* s, uint8_t* d, const int8_t* g, auto next) {
@@ -411,8 +414,11 @@ void DeblockBlendBlockRowsU16I8(const uint16_t* src, std::ptrdiff_t src_stride, 
                                 int8_t* row, NextStripeRow<uint16_t> ahead) {
 #if HWY_TARGET == HWY_AVX3
     if (block == 8 && bit_depth <= 12)
-        return avx512::DeblockBlendBlockRows8U16(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width,
-                                                 grain_end, bit_depth, ahead);
+        return avx512::DeblockBlendBlockRowsU16<8>(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows,
+                                                   width, grain_end, bit_depth, ahead);
+    if (block == 16 && bit_depth <= 12)
+        return avx512::DeblockBlendBlockRowsU16<16>(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows,
+                                                    width, grain_end, bit_depth, ahead);
 #endif
     DeblockBlendBlockRowsViaBuffer(src, src_stride, dst, dst_stride, blocks, offset, pitch, rows, width, grain_end,
                                    block, row, ahead, [&](const uint16_t* s, uint16_t* d, const int8_t* g, auto next) {
