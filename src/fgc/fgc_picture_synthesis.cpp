@@ -175,6 +175,7 @@ void FgcPictureSynthesis::apply(const ResolvedFgc& params, const FrameView& src,
             if (any_correlation) grow(s.rho, std::size_t(blocks_x * rb + 2) * rb);
         } else {
             grow(s.sums, std::size_t(blocks_x) * 4);
+            if (flavour_ == FgcFlavour::kVtm) grow(s.last_row_sums, std::size_t(blocks_x) * 4);
             grow(s.blocks, std::size_t(blocks_x) * 4);
             grow(s.narrow_blocks, std::size_t(blocks_x) * 4);
             grow(s.places, std::size_t(blocks_x) * 2);

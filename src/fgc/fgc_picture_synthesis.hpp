@@ -110,6 +110,7 @@ private:
         std::vector<uint8_t> has_grain;       // ... ffmpeg flavour: the blocks that got grain
         std::vector<int16_t> rho;             // ... model 1: p1 of each sample's interval
         std::vector<uint32_t> sums;           // block sums of the stripe's block rows
+        std::vector<uint32_t> last_row_sums;  // ... vtm: of the picture's last row, below which it replicates
         std::vector<const int16_t*> blocks;   // optimized path: row 0 of each block's scaled grain
         std::vector<const int8_t*> narrow_blocks;  // ... when the tables are int8
         std::vector<int32_t> places;          // ... each block column's place in the tables

@@ -75,11 +75,19 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
         // which sums them itself (the other blocks do not read sums when the rows are whole)
         constexpr bool kBytes = sizeof(Pixel) == 1 && sizeof(Table) == 1;
         const bool table_kernel = kBytes && tables && rows_inside == kBlock;
-        if ((rdd5 || rows_inside == kBlock) && !table_kernel) {
+        auto sum_blocks = [&](int y, int n, uint32_t* out) {
             if constexpr (sizeof(Pixel) == 1)
-                simd::block_sums_u8(src.row<const Pixel>(y0), src.stride, rows_inside, w, kBlock, sums);
+                simd::block_sums_u8(src.row<const Pixel>(y), src.stride, n, w, kBlock, out);
             else
-                simd::block_sums_u16(src.row<const Pixel>(y0), src.stride, rows_inside, w, kBlock, sums);
+                simd::block_sums_u16(src.row<const Pixel>(y), src.stride, n, w, kBlock, out);
+        };
+        if (!table_kernel) sum_blocks(y0, rows_inside, sums);
+        // vtm's blocks that cross the bottom edge average the edge-replicated picture
+        // (block_average_replicated): the rows inside, and the last row once for each row below
+        const uint32_t* last_row = nullptr;
+        if (!rdd5 && rows_inside < kBlock) {
+            sum_blocks(h - 1, 1, scratch.last_row_sums.data());
+            last_row = scratch.last_row_sums.data();
         }
         const int row_offset = yi * kBlock * kTemplateSize;
         int j = 0;
@@ -117,8 +125,9 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
                 } else {
                     avg = block_average_inside<Pixel>(src, x0, y0, kBlock, bit_depth);
                 }
-            } else if (j < whole_blocks && rows_inside == kBlock) {
-                avg = int(std::min<uint32_t>(sums[j] >> (kLog2Area + bit_depth - 8), 255));
+            } else if (j < whole_blocks) {
+                const uint32_t sum = last_row ? sums[j] + uint32_t(kBlock - rows_inside) * last_row[j] : sums[j];
+                avg = int(std::min<uint32_t>(sum >> (kLog2Area + bit_depth - 8), 255));
             } else {
                 avg = block_average_replicated<Pixel>(src, x0, y0, kBlock, bit_depth);
             }
