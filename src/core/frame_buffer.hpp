@@ -31,9 +31,14 @@ inline constexpr long long kMaxPictureSamples = 1LL << 28;
 // Throws Error(kInvalidArgument) naming the size and the limit when width x height is outside it.
 void check_picture_size(int width, int height);
 
+// A picture's first row starts on a cache line: malloc gives 16 mod 64 for the sizes it
+// maps (any picture from 256 KiB up), where every 64-byte store of a vector kernel
+// straddles two lines.
+inline constexpr std::size_t kFrameAlignment = 64;
+
 // A std::allocator whose value-less construct() leaves bytes uninitialized, so that a vector
 // resized for data about to be read is not zero-filled first (its pages stay untouched until
-// the data arrives).
+// the data arrives), and whose storage starts at kFrameAlignment.
 template <typename T>
 struct DefaultInitAllocator : std::allocator<T> {
     template <typename U>
@@ -43,6 +48,12 @@ struct DefaultInitAllocator : std::allocator<T> {
     DefaultInitAllocator() = default;
     template <typename U>
     DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kFrameAlignment)));
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        ::operator delete(p, n * sizeof(T), std::align_val_t(kFrameAlignment));
+    }
     template <typename U>
     void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
         ::new (static_cast<void*>(p)) U;

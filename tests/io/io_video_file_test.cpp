@@ -152,6 +152,21 @@ TEST(IoFrameBuffer, PictureLimit) {
     EXPECT_EQ(copy.byte_size(), z.byte_size());
 }
 
+// Every picture starts on a cache line, the small ones from the heap and the large ones malloc
+// would map at 16 mod 64, copies and moves included.
+TEST(IoFrameBuffer, StartsOnACacheLine) {
+    std::vector<FrameBuffer> frames;
+    for (auto [w, h] : {std::pair{1, 1}, {33, 17}, {640, 360}, {1920, 1080}, {3840, 2160}, {720, 576}})
+        for (int bd : {8, 10}) {
+            frames.emplace_back(w, h, PixelFormat{ChromaFormat::k420, bd});
+            frames.push_back(FrameBuffer::uninitialized(w, h, PixelFormat{ChromaFormat::k444, bd}));
+            frames.push_back(frames.back());
+        }
+    for (const FrameBuffer& f : frames)
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(f.bytes()) % kFrameAlignment, 0u)
+            << f.width() << "x" << f.height() << " at " << static_cast<const void*>(f.bytes());
+}
+
 TEST(IoReadWholeFile, BoundedOnDevicesAndFiles) {
     const std::string e = error_of([] { read_whole_file("/dev/zero", 1 << 20, "a test input"); });
     EXPECT_NE(e.find("'/dev/zero' holds more than 1048576 bytes (1 MiB); the limit for a test input is 1048576 bytes (1 MiB)"),
