@@ -19,8 +19,8 @@ namespace filmgrain::fgc {
 // adds the blocks' rows to the picture: the grain of a whole stripe is never written out.
 // With int8 tables (8-bit grain always fits) the kernel loads each row's grain from the
 // blocks' pointers itself (on targets without such a form it gathers them into scratch);
-// int16 grain is copied into a band of grain rows first. 8-bit pictures with int8 tables
-// also get their whole blocks' tables from a kernel that sums them. Blocks that touch the
+// int16 grain is copied into a band of grain rows first. With int8 tables the whole blocks
+// also get their tables from a kernel that sums them. Blocks that touch the
 // picture's right or bottom edge take their averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
 template <typename Table>
@@ -71,10 +71,10 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
             continue;
         }
         uint32_t* sums = scratch.sums.data() + yi * columns;
-        // 8-bit samples with int8 tables: whole blocks get their tables from block_tables_u8,
-        // which sums them itself (the other blocks do not read sums when the rows are whole)
-        constexpr bool kBytes = sizeof(Pixel) == 1 && sizeof(Table) == 1;
-        const bool table_kernel = kBytes && tables && rows_inside == kBlock;
+        // int8 tables: whole blocks get their tables from block_tables_u8 / _u16, which sum
+        // them themselves (the other blocks do not read sums when the rows are whole)
+        constexpr bool kInt8Tables = sizeof(Table) == 1;
+        const bool table_kernel = kInt8Tables && tables && rows_inside == kBlock;
         auto sum_blocks = [&](int y, int n, uint32_t* out) {
             if constexpr (sizeof(Pixel) == 1)
                 simd::block_sums_u8(src.row<const Pixel>(y), src.stride, n, w, kBlock, out);
@@ -100,9 +100,13 @@ void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, con
             const int avg_shift = kLog2Area + bit_depth - 8;
             const int32_t* offsets = table_offsets_[c].data();
             const Table* base = table0 + row_offset;
-            if constexpr (kBytes) {
-                simd::block_tables_u8(src.row<const Pixel>(y0), src.stride, kBlock, w, kBlock, avg_shift, offsets,
-                                      places, base, block_row);
+            if constexpr (kInt8Tables) {
+                if constexpr (sizeof(Pixel) == 1)
+                    simd::block_tables_u8(src.row<const Pixel>(y0), src.stride, kBlock, w, kBlock, avg_shift, offsets,
+                                          places, base, block_row);
+                else
+                    simd::block_tables_u16(src.row<const Pixel>(y0), src.stride, kBlock, w, kBlock, avg_shift, offsets,
+                                           places, base, block_row);
                 j = whole_blocks;
             } else {
                 for (; j < whole_blocks; j++)

@@ -23,6 +23,8 @@ class FgcSimdEquivalence : public test_support::ForcedSimdTarget<20261124u> {
 protected:
     template <typename Pixel>
     void check_rows_from_blocks(int iterations);
+    template <typename Pixel>
+    void check_tables_from_sums(int iterations);
 };
 
 // One grain row as the optimized stripe holds it: element 0 is the readable element before
@@ -168,20 +170,26 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks8Bit) { check_rows_from_bloc
 TEST_P(FgcSimdEquivalence, DeblockAndBlendFromBlocks16Bit) { check_rows_from_blocks<uint16_t>(2000); }
 
 // Each whole block's table pointer from its sample sum: the reference is the element-wise
-// sum, shift, clamp and look-up. Samples are often all 255 (the largest sums) and the shift
-// runs from the 8-bit one down to 0, so that the clamp at 255 is exercised.
-TEST_P(FgcSimdEquivalence, BlockTablesFromSums8Bit) {
+// sum, shift, clamp and look-up. Samples are often all at their largest value (the largest
+// sums) and the shift runs from the bit depth's own down to 0, so that the clamp at 255 is
+// exercised. 16-bit samples at bit depths 9 to 16, and any 16-bit value (bad input the sums
+// must still add exactly).
+template <typename Pixel>
+void FgcSimdEquivalence::check_tables_from_sums(int iterations) {
     std::vector<int8_t> tables(1 << 16);
     std::vector<int32_t> offsets(256);
-    for (int iter = 0; iter < 1000; iter++) {
+    for (int iter = 0; iter < iterations; iter++) {
         const int bs = uniform(0, 2) ? 8 : 8 << uniform(1, 2);
+        const int bd = sizeof(Pixel) == 1 ? 8 : uniform(9, 16);
+        const int max_value = sizeof(Pixel) == 1 || uniform(0, 3) ? (1 << bd) - 1 : 65535;
         const int rows = uniform(0, 3) ? bs : uniform(1, bs);
         const int width = uniform(0, 2) ? uniform(1, 700) : 64 * uniform(1, 10);
-        const int shift = uniform(0, 3) ? (bs == 8 ? 6 : bs == 16 ? 8 : 10) : uniform(0, 10);
-        const std::ptrdiff_t stride = width + uniform(0, 40);
+        const int own_shift = (bs == 8 ? 6 : bs == 16 ? 8 : 10) + bd - 8;
+        const int shift = uniform(0, 3) ? own_shift : uniform(0, own_shift + 4);
+        const std::ptrdiff_t pitch = width + uniform(0, 40);
         const bool flat = uniform(0, 3) == 0;
-        std::vector<uint8_t> src(std::size_t(stride) * rows);
-        for (auto& v : src) v = flat ? 255 : uint8_t(uniform(0, 255));
+        std::vector<Pixel> src(std::size_t(pitch) * rows);
+        for (auto& v : src) v = Pixel(flat ? max_value : uniform(0, max_value));
         for (auto& o : offsets) o = uniform(0, 4) * 8192;
         const int blocks = width / bs;
         std::vector<int32_t> places(static_cast<std::size_t>(blocks));
@@ -190,16 +198,26 @@ TEST_P(FgcSimdEquivalence, BlockTablesFromSums8Bit) {
         for (int j = 0; j < blocks; j++) {
             uint32_t sum = 0;
             for (int y = 0; y < rows; y++)
-                for (int k = 0; k < bs; k++) sum += src[std::size_t(y * stride + j * bs + k)];
+                for (int k = 0; k < bs; k++) sum += src[std::size_t(y * pitch + j * bs + k)];
             want[std::size_t(j)] =
                 tables.data() + offsets[std::min<uint32_t>(sum >> shift, 255)] + places[std::size_t(j)];
         }
-        fgc::simd::block_tables_u8(src.data(), stride, rows, width, bs, shift, offsets.data(), places.data(),
-                                   tables.data(), got.data());
+        const std::ptrdiff_t stride = pitch * std::ptrdiff_t(sizeof(Pixel));
+        if constexpr (sizeof(Pixel) == 1)
+            fgc::simd::block_tables_u8(src.data(), stride, rows, width, bs, shift, offsets.data(), places.data(),
+                                       tables.data(), got.data());
+        else
+            fgc::simd::block_tables_u16(src.data(), stride, rows, width, bs, shift, offsets.data(), places.data(),
+                                        tables.data(), got.data());
         ASSERT_EQ(got, want) << "iteration " << iter << " width " << width << " rows " << rows << " bs " << bs
-                             << " shift " << shift << " (the entry past the last whole block must stay untouched)";
+                             << " bit depth " << bd << " shift " << shift
+                             << " (the entry past the last whole block must stay untouched)";
     }
 }
+
+TEST_P(FgcSimdEquivalence, BlockTablesFromSums8Bit) { check_tables_from_sums<uint8_t>(1000); }
+
+TEST_P(FgcSimdEquivalence, BlockTablesFromSums16Bit) { check_tables_from_sums<uint16_t>(1000); }
 
 INSTANTIATE_TEST_SUITE_P(Targets, FgcSimdEquivalence, ::testing::ValuesIn(simd::available_targets()),
                          [](const ::testing::TestParamInfo<simd::Target>& i) { return i.param.name; });

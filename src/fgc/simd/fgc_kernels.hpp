@@ -102,5 +102,8 @@ void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int widt
 void block_tables_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
                      const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** blocks);
 void block_sums_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
+// block_tables_u8 for 16-bit samples (block_sums_u16's sums; `stride` in bytes).
+void block_tables_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                      const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** blocks);
 
 }  // namespace filmgrain::fgc::simd

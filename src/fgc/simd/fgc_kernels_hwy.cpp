@@ -452,6 +452,23 @@ void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width,
 }
 
 // block_sums_u8 of whole blocks followed by the stripe's look-up of each block's table.
+// The generic table look-up, from block j on: the sums of up to 64 blocks at a time
+// (sum_blocks: BlockSumsU8 or BlockSumsU16), then each block's table.
+template <typename Pixel, typename SumBlocks>
+void TablesFromBlockSums(const Pixel* src, std::ptrdiff_t stride, int rows, int blocks, int j, int block, int shift,
+                         const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out,
+                         SumBlocks sum_blocks) {
+    uint32_t sums[64];
+    for (; j < blocks; j += 64) {
+        const int n = std::min(64, blocks - j);
+        sum_blocks(src + j * block, stride, rows, n * block, block, sums);
+        for (int k = 0; k < n; k++)
+            out[j + k] = base + offsets[std::min<uint32_t>(sums[k] >> shift, 255)] + places[j + k];
+    }
+}
+
+void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
+
 void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
                    const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
     const int blocks = width / block;
@@ -461,13 +478,17 @@ void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int widt
 #elif HWY_TARGET == HWY_AVX2
     if (block == 8) j = avx2::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
 #endif
-    uint32_t sums[64];
-    for (; j < blocks; j += 64) {
-        const int n = std::min(64, blocks - j);
-        BlockSumsU8(src + j * block, stride, rows, n * block, block, sums);
-        for (int k = 0; k < n; k++)
-            out[j + k] = base + offsets[std::min<uint32_t>(sums[k] >> shift, 255)] + places[j + k];
-    }
+    TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU8);
+}
+
+void BlockTablesU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                    const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
+    const int blocks = width / block;
+    int j = 0;
+#if HWY_TARGET == HWY_AVX3
+    if (block == 8) j = avx512::BlockTables8U16(src, stride, rows, blocks, shift, offsets, places, base, out);
+#endif
+    TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU16);
 }
 
 void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
@@ -525,6 +546,7 @@ HWY_EXPORT(DeblockBlendBlockRowsU8I8);
 HWY_EXPORT(BlockSumsU8);
 HWY_EXPORT(BlockTablesU8);
 HWY_EXPORT(BlockSumsU16);
+HWY_EXPORT(BlockTablesU16);
 
 void scale_template_blocks(const BlockCopy* blocks, int count, int rows, int shift, std::ptrdiff_t dst_stride) {
     HWY_DYNAMIC_DISPATCH(ScaleTemplateBlocks)(blocks, count, rows, shift, dst_stride);
@@ -569,6 +591,10 @@ void block_sums_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int widt
 void block_tables_u8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
                      const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** blocks) {
     HWY_DYNAMIC_DISPATCH(BlockTablesU8)(src, stride, rows, width, block, shift, offsets, places, base, blocks);
+}
+void block_tables_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                      const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** blocks) {
+    HWY_DYNAMIC_DISPATCH(BlockTablesU16)(src, stride, rows, width, block, shift, offsets, places, base, blocks);
 }
 void block_sums_u16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
     HWY_DYNAMIC_DISPATCH(BlockSumsU16)(src, stride, rows, width, block, sums);
