@@ -1,6 +1,7 @@
 // 16-bit FGC stripe kernel for 8x8 and 16x16 blocks with int8 grain (the narrow scaled tables) and bit
 // depths up to 12, for the AVX3 target of fgc_kernels_hwy.cpp; included inside that file's
-// HWY_NAMESPACE, on the AVX3 pass only. Twin of the generic form there
+// HWY_NAMESPACE, on the AVX3 pass only, after block_rows_u8_avx512-inl.h (whose column walk,
+// ForEachVectorOfRow, and GrainAroundColumns it shares). Twin of the generic form there
 // (DeblockBlendBlockRowsU16ViaBuffer: GatherBlockBandsI8, then DeblockBlendRowU16Narrow per
 // row), bit-equal to it and to the reference stages (fgc_simd_equivalence_test).
 //
@@ -116,30 +117,11 @@ inline void DeblockBlendBlockRowsU16(const uint16_t* src, std::ptrdiff_t src_str
             return _mm512_cvtepi8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(g + at)));
         };
         for (int r = 0; r < rows; r++) {
-            const std::ptrdiff_t o = offset + r * pitch;
-            for (int i = 0; i < 34; i++) {
-                const int col = x - 1 + i;
-                g[i] = col >= 0 && col < end ? blocks[col / kBlock][o + col % kBlock] : int8_t(0);
-            }
+            GrainAroundColumns<kBlock>(blocks, offset + r * pitch, x, 32, end, g);
             blend(x, r, widened(0), widened(1), widened(2), filtered);
         }
     };
-    using No = std::false_type;
-    using Yes = std::true_type;
-    int x = 0;
-    if (width <= 0) return;
-    if (32 < end)
-        whole(0, No{}, Yes{});
-    else if (32 == end)
-        whole(0, No{}, No{});
-    else
-        partial(0);
-    for (x = 32; x < width && x + 32 < end; x += 32) whole(x, Yes{}, Yes{});
-    if (x < width && x + 32 == end) {
-        whole(x, Yes{}, No{});
-        x += 32;
-    }
-    for (; x < width; x += 32) partial(x);
+    ForEachVectorOfRow<32>(width, end, whole, partial);
 }
 
 }  // namespace avx512
