@@ -51,8 +51,9 @@ struct DefaultInitAllocator : std::allocator<T> {
     T* allocate(std::size_t n) {
         return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kFrameAlignment)));
     }
-    void deallocate(T* p, std::size_t n) noexcept {
-        ::operator delete(p, n * sizeof(T), std::align_val_t(kFrameAlignment));
+    // unsized: clang declares the sized aligned delete only with -fsized-deallocation
+    void deallocate(T* p, std::size_t) noexcept {
+        ::operator delete(p, std::align_val_t(kFrameAlignment));
     }
     template <typename U>
     void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
