@@ -451,7 +451,6 @@ void BlockSumsU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width,
         for (int y = 0; y < rows; y++) sums[x >> log2_block] += src[stride * y + x];
 }
 
-// block_sums_u8 of whole blocks followed by the stripe's look-up of each block's table.
 // The generic table look-up, from block j on: the sums of up to 64 blocks at a time
 // (sum_blocks: BlockSumsU8 or BlockSumsU16), then each block's table.
 template <typename Pixel, typename SumBlocks>
@@ -465,30 +464,6 @@ void TablesFromBlockSums(const Pixel* src, std::ptrdiff_t stride, int rows, int 
         for (int k = 0; k < n; k++)
             out[j + k] = base + offsets[std::min<uint32_t>(sums[k] >> shift, 255)] + places[j + k];
     }
-}
-
-void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums);
-
-void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
-                   const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
-    const int blocks = width / block;
-    int j = 0;
-#if HWY_TARGET == HWY_AVX3
-    if (block == 8) j = avx512::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
-#elif HWY_TARGET == HWY_AVX2
-    if (block == 8) j = avx2::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
-#endif
-    TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU8);
-}
-
-void BlockTablesU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
-                    const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
-    const int blocks = width / block;
-    int j = 0;
-#if HWY_TARGET == HWY_AVX3
-    if (block == 8) j = avx512::BlockTables8U16(src, stride, rows, blocks, shift, offsets, places, base, out);
-#endif
-    TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU16);
 }
 
 void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, uint32_t* sums) {
@@ -527,6 +502,29 @@ void BlockSumsU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int widt
     for (; x < limit; x++)
         for (int y = 0; y < rows; y++) sums[x >> log2_block] += src[pitch * y + x];
 }
+
+void BlockTablesU8(const uint8_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                   const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
+    const int blocks = width / block;
+    int j = 0;
+#if HWY_TARGET == HWY_AVX3
+    if (block == 8) j = avx512::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
+#elif HWY_TARGET == HWY_AVX2
+    if (block == 8) j = avx2::BlockTables8(src, stride, rows, blocks, shift, offsets, places, base, out);
+#endif
+    TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU8);
+}
+
+void BlockTablesU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int width, int block, int shift,
+                    const int32_t* offsets, const int32_t* places, const int8_t* base, const int8_t** out) {
+    const int blocks = width / block;
+    int j = 0;
+#if HWY_TARGET == HWY_AVX3
+    if (block == 8) j = avx512::BlockTables8U16(src, stride, rows, blocks, shift, offsets, places, base, out);
+#endif
+    TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU16);
+}
+
 
 }  // namespace HWY_NAMESPACE
 }  // namespace filmgrain::fgc::simd
