@@ -7,7 +7,11 @@
 // per difference) is gone. Both outputs are compared: a picture where they differ is an
 // error.
 //
-//   [FILMGRAIN_SIMD_TARGET=AVX3|AVX2|SSE4|...] filmgrain_dav1d_compare STREAM.ivf [--json FILE]
+//   [FILMGRAIN_SIMD_TARGET=AVX3|AVX2|SSE4|...] [DAV1D_CPU_MASK=N] filmgrain_dav1d_compare STREAM.ivf [--json FILE]
+//
+// DAV1D_CPU_MASK limits dav1d's CPU flags as its CLI's --cpumask does (x86: 1 SSE2, 2 SSSE3,
+// 4 SSE4.1, 8 AVX2, 16 AVX-512 ICL; 15 = up to AVX2), so that both sides can be measured on
+// the target an AVX2-only CPU would run: FILMGRAIN_SIMD_TARGET=AVX2 DAV1D_CPU_MASK=15.
 //
 // Which libdav1d it runs is the one CMake found (FILMGRAIN_DAV1D_ROOT, else the system's); the
 // report names its dav1d_version() and filmgrain's dispatch target, since either changes the
@@ -31,6 +35,9 @@
 #include "core/frame_buffer.hpp"
 #include "core/simd_targets.hpp"
 #include "filmgrain/av1_params.hpp"
+
+// Exported by libdav1d (its CLI's --cpumask) but not declared in its installed headers.
+extern "C" void dav1d_set_cpu_flags_mask(unsigned mask);
 
 namespace {
 
@@ -205,6 +212,13 @@ int main(int argc, char** argv) {
         if (const char* target = std::getenv("FILMGRAIN_SIMD_TARGET"); target && *target)
             if (!simd::force_target(std::string(target)))
                 throw std::runtime_error("FILMGRAIN_SIMD_TARGET=" + std::string(target) + " is not available");
+        if (const char* mask = std::getenv("DAV1D_CPU_MASK"); mask && *mask) {
+            char* end = nullptr;
+            const unsigned long m = std::strtoul(mask, &end, 0);
+            if (*end || m > 0xFFFFu)
+                throw std::runtime_error("DAV1D_CPU_MASK=" + std::string(mask) + " is not a flag mask (0..65535)");
+            dav1d_set_cpu_flags_mask(unsigned(m));
+        }
         const std::string dav1d = dav1d_version(), target = simd::dispatched_target();
         Timings t;
         run(argv[1], t);
