@@ -17,7 +17,7 @@ int64_t le64(const uint8_t* p) {
 // `base`: the position of data[0] in the stream, for offsets and messages.
 bool read_obu(const uint8_t* data, std::size_t end, std::size_t& pos, Av1Obu& obu, std::string& why,
               std::size_t base = 0) {
-    const std::size_t start = pos, at = base + pos;
+    const std::size_t at = base + pos;
     if (pos >= end) {
         why = "OBU header missing";
         return false;

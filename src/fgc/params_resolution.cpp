@@ -15,6 +15,13 @@ namespace {
 // after the chroma conversion (RDD 5 limits the template database to 10 entries).
 constexpr int kMaxCutoffPairs = 10;
 
+// "[c][i]", as the messages name an interval's fields. Built from a std::string: GCC 12
+// warns (-Wrestrict, a false positive) where a one-character literal is prepended to a
+// temporary string.
+std::string interval_index(int c, std::size_t i) {
+    return std::string("[") + std::to_string(c) + "][" + std::to_string(i) + "]";
+}
+
 }  // namespace
 
 std::string comp_model_value_name(int c, int i, int j) {
@@ -62,7 +69,7 @@ void check_fgc_syntax_ranges(const FgcParams& p, int picture_bit_depth) {
                                          m.num_model_values_minus1, 0, 5));
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
-            std::string idx = "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
+            const std::string idx = interval_index(c, i);
             if (iv.intensity_interval_lower_bound < 0 || iv.intensity_interval_lower_bound > 255)
                 invalid(out_of_range_message("intensity_interval_lower_bound" + idx, iv.intensity_interval_lower_bound, 0, 255));
             if (iv.intensity_interval_upper_bound < 0 || iv.intensity_interval_upper_bound > 255)
@@ -208,7 +215,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                                         : " = 255 << (bit_depth - 8))";
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
-            const std::string idx = "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
+            const std::string idx = interval_index(c, i);
             // ffmpeg: FFmpeg takes the first signalled interval that holds the block average,
             // so an empty interval (lower > upper) holds none and an overlap goes to the earlier.
             if (iv.intensity_interval_lower_bound > iv.intensity_interval_upper_bound && !ffmpeg)

@@ -41,7 +41,8 @@ FgcParams fgc_params_from_json(const json& j) {
         auto& m = p.comp[c];
         m.comp_model_present_flag = present[c] != 0;
         if (!m.comp_model_present_flag) continue;
-        const std::string cs = "[" + std::to_string(c) + "]";
+        // from a std::string: "[" + a temporary string trips GCC 12's -Wrestrict (a false positive)
+        const std::string cs = std::string("[") + std::to_string(c) + "]";
         if (nint.empty() || nmv.empty() || !lower || !upper || !values)
             throw Error(ErrorCode::kInvalidParams,
                         "fgc: comp_model_present_flag" + cs +

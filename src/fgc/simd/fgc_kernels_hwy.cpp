@@ -525,7 +525,6 @@ void BlockTablesU16(const uint16_t* src, std::ptrdiff_t stride, int rows, int wi
     TablesFromBlockSums(src, stride, rows, blocks, j, block, shift, offsets, places, base, out, BlockSumsU16);
 }
 
-
 }  // namespace HWY_NAMESPACE
 }  // namespace filmgrain::fgc::simd
 HWY_AFTER_NAMESPACE();
