@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "filmgrain/error.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain::av1 {
 namespace {
@@ -23,7 +24,6 @@ void check_range(const Name& field, long long value, long long lo, long long hi)
         throw Error(ErrorCode::kInvalidParams, out_of_range_message(field_name(field), value, lo, hi));
 }
 
-std::string indexed(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
 
 // Points of one scaling function: values 8 bits and strictly increasing (the
 // spec requires it so that the interpolation divides by a positive run).

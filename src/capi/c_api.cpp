@@ -22,6 +22,7 @@
 #include "filmgrain/filmgrain.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
+#include "core/field_names.hpp"
 
 struct fg_context {
     filmgrain::Session grain;
@@ -296,7 +297,7 @@ filmgrain::FgcParams to_fgc(const fg_fgc_params& c) {
     p.film_grain_characteristics_repetition_period = c.repetition_period;
     for (int k = 0; k < 3; k++) {
         if (!c.comp_model_present_flag[k]) continue;
-        const std::string idx = "[" + std::to_string(k) + "]";
+        const std::string idx = filmgrain::indexed("", k);
         check_in(("num_intensity_intervals_minus1" + idx).c_str(), c.num_intensity_intervals_minus1[k], 0, 255);
         check_in(("num_model_values_minus1" + idx).c_str(), c.num_model_values_minus1[k], 0, 5);
         filmgrain::FgcComponentModel& m = p.comp[std::size_t(k)];
@@ -410,7 +411,7 @@ filmgrain::Av1FilmGrainParams from_av1_grain(const fg_av1_grain& g) {
     p.ar_coeff_shift_minus_6 = g.ar_coeff_shift - 6;
     p.grain_scale_shift = g.grain_scale_shift;
     for (int k = 0; k < 2; k++) {
-        const std::string idx = "[" + std::to_string(k) + "]";
+        const std::string idx = filmgrain::indexed("", k);
         check_in(("uv_mult" + idx).c_str(), g.uv_mult[k], -128, 127);
         check_in(("uv_luma_mult" + idx).c_str(), g.uv_luma_mult[k], -128, 127);
         check_in(("uv_offset" + idx).c_str(), g.uv_offset[k], -256, 255);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "filmgrain/error.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain {
 
@@ -13,7 +14,7 @@ void check_plane_layout(const FrameView& v, const std::string& name) {
     const int bps = v.bytes_per_sample();
     for (int p = 0; p < v.plane_count(); p++) {
         const PlaneView& pl = v.planes[p];
-        const std::string idx = std::string("[") + std::to_string(p) + "]";  // (GCC 12 -Wrestrict misfires on "[" + a temporary)
+        const std::string idx = indexed("", p);
         const unsigned long long rows = static_cast<unsigned long long>(plane_height(v.format, p, v.height));
         const unsigned long long row = static_cast<unsigned long long>(plane_width(v.format, p, v.width)) * unsigned(bps);
         if (rows > 1) {

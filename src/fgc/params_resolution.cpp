@@ -5,6 +5,7 @@
 
 #include "fgc/ar_template_generation.hpp"
 #include "filmgrain/error.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain::fgc {
 namespace {
@@ -14,13 +15,6 @@ namespace {
 // HM (both generations) counts at most 10 distinct cut-off pairs over all components,
 // after the chroma conversion (RDD 5 limits the template database to 10 entries).
 constexpr int kMaxCutoffPairs = 10;
-
-// "[c][i]", as the messages name an interval's fields. Built from a std::string: GCC 12
-// warns (-Wrestrict, a false positive) where a one-character literal is prepended to a
-// temporary string.
-std::string interval_index(int c, std::size_t i) {
-    return std::string("[") + std::to_string(c) + "][" + std::to_string(i) + "]";
-}
 
 }  // namespace
 
@@ -69,7 +63,7 @@ void check_fgc_syntax_ranges(const FgcParams& p, int picture_bit_depth) {
                                          m.num_model_values_minus1, 0, 5));
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
-            const std::string idx = interval_index(c, i);
+            const std::string idx = indexed("", c, i);
             if (iv.intensity_interval_lower_bound < 0 || iv.intensity_interval_lower_bound > 255)
                 invalid(out_of_range_message("intensity_interval_lower_bound" + idx, iv.intensity_interval_lower_bound, 0, 255));
             if (iv.intensity_interval_upper_bound < 0 || iv.intensity_interval_upper_bound > 255)
@@ -215,7 +209,7 @@ ResolvedFgc resolve_fgc_params(const FgcParams& p, FgcFlavour flavour, const Pic
                                         : " = 255 << (bit_depth - 8))";
         for (std::size_t i = 0; i < m.intervals.size(); i++) {
             const auto& iv = m.intervals[i];
-            const std::string idx = interval_index(c, i);
+            const std::string idx = indexed("", c, i);
             // ffmpeg: FFmpeg takes the first signalled interval that holds the block average,
             // so an empty interval (lower > upper) holds none and an overlap goes to the earlier.
             if (iv.intensity_interval_lower_bound > iv.intensity_interval_upper_bound && !ffmpeg)

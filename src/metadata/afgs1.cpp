@@ -7,13 +7,13 @@
 #include "filmgrain/error.hpp"
 #include "metadata/afgs1_fields.hpp"
 #include "metadata/bit_reader.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain {
 namespace {
 
 [[noreturn]] void malformed(const std::string& msg) { throw Error(ErrorCode::kMalformedPayload, "AFGS1: " + msg); }
 
-std::string indexed(const std::string& name, int i) { return name + "[" + std::to_string(i) + "]"; }
 
 using afgs1_fields::ar_coeffs_of;
 using afgs1_fields::mults_of;

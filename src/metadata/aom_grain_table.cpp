@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "filmgrain/error.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain {
 namespace {
@@ -74,7 +75,6 @@ private:
     std::size_t index_ = 1;  // token 0 is the keyword
 };
 
-std::string idx(const char* name, int i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
 
 }  // namespace
 
@@ -162,8 +162,8 @@ AomGrainTable parse_aom_grain_table(std::string_view text) {
                 FieldReader s(l, keyword);
                 num = s.next_int(num_name, 0, max);
                 for (int i = 0; i < num; ++i) {
-                    values[i] = s.next_int(idx(value_name, i), 0, 255);
-                    scalings[i] = s.next_int(idx(scaling_name, i), 0, 255);
+                    values[i] = s.next_int(indexed(value_name, i), 0, 255);
+                    scalings[i] = s.next_int(indexed(scaling_name, i), 0, 255);
                 }
                 s.finish();
                 return l.number;
@@ -179,7 +179,7 @@ AomGrainTable parse_aom_grain_table(std::string_view text) {
             auto read_coeffs = [&](const char* keyword, const char* name, int count, int* out, int prev_line) {
                 const Line& l = expect(keyword, prev_line);
                 FieldReader c(l, keyword);
-                for (int i = 0; i < count; ++i) out[i] = c.next_int(idx(name, i), -128, 127) + 128;
+                for (int i = 0; i < count; ++i) out[i] = c.next_int(indexed(name, i), -128, 127) + 128;
                 c.finish();
                 return l.number;
             };

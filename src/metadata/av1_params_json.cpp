@@ -5,6 +5,7 @@
 
 #include "filmgrain/error.hpp"
 #include "metadata/json_access.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain {
 namespace {
@@ -47,7 +48,7 @@ int get_array(const json& j, const char* key, std::array<int, N>& out, bool requ
              std::to_string(N) + " allowed)");
     for (std::size_t i = 0; i < it->size(); ++i) {
         const json& e = (*it)[i];
-        const std::string name = std::string(key) + "[" + std::to_string(i) + "]";
+        const std::string name = indexed(key, i);
         if (!e.is_number_integer()) fail("\"" + name + "\" must be an integer, got " + json_brief(e));
         try {
             out[i] = int(json_to_integer(e, lo, hi, "\"" + name + "\""));
@@ -228,7 +229,7 @@ std::vector<Av1FrameParams> av1_frame_params_from_json(const json& doc) {
         return out;
     }
     for (std::size_t i = 0; i < list->size(); ++i)
-        out.push_back(frame_from_json((*list)[i], std::string(name) + "[" + std::to_string(i) + "]"));
+        out.push_back(frame_from_json((*list)[i], indexed(name, i)));
     return out;
 }
 

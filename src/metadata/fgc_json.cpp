@@ -4,6 +4,7 @@
 
 #include "filmgrain/error.hpp"
 #include "metadata/json_access.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain {
 
@@ -41,8 +42,7 @@ FgcParams fgc_params_from_json(const json& j) {
         auto& m = p.comp[c];
         m.comp_model_present_flag = present[c] != 0;
         if (!m.comp_model_present_flag) continue;
-        // from a std::string: "[" + a temporary string trips GCC 12's -Wrestrict (a false positive)
-        const std::string cs = std::string("[") + std::to_string(c) + "]";
+        const std::string cs = indexed("", c);
         if (nint.empty() || nmv.empty() || !lower || !upper || !values)
             throw Error(ErrorCode::kInvalidParams,
                         "fgc: comp_model_present_flag" + cs +
@@ -58,7 +58,7 @@ FgcParams fgc_params_from_json(const json& j) {
                                                        std::to_string(n) + " intervals");
         m.intervals.resize(n);
         for (int i = 0; i < n; i++) {
-            const std::string is = cs + "[" + std::to_string(i) + "]";
+            const std::string is = indexed("", c, i);
             auto v = JsonObject::int_array_at((*values)[c], i, m.num_model_values_minus1 + 1, -(1 << 30), 1 << 30,
                                               "comp_model_value" + is);
             m.intervals[i].intensity_interval_lower_bound = lo[i];

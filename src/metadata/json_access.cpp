@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 #include <limits>
+#include "core/field_names.hpp"
 
 
 namespace filmgrain {
@@ -134,7 +135,7 @@ std::vector<int> JsonObject::get_int_array(const char* key, std::size_t n, long 
                                                    " entries (needs " + std::to_string(n) + ")");
     std::vector<int> out;
     for (std::size_t i = 0; i < n; i++)
-        out.push_back(to_int((*a)[i], lo, hi, ctx_ + "." + key + "[" + std::to_string(i) + "]"));
+        out.push_back(to_int((*a)[i], lo, hi, indexed(ctx_ + "." + key, i)));
     return out;
 }
 
@@ -147,7 +148,7 @@ std::vector<int> JsonObject::int_array_at(const nlohmann::json& outer, std::size
         throw Error(ErrorCode::kInvalidParams,
                     name + " has " + std::to_string(a.size()) + " entries (needs " + std::to_string(n) + ")");
     std::vector<int> out;
-    for (std::size_t k = 0; k < n; k++) out.push_back(to_int(a[k], lo, hi, name + "[" + std::to_string(k) + "]"));
+    for (std::size_t k = 0; k < n; k++) out.push_back(to_int(a[k], lo, hi, indexed(name, k)));
     return out;
 }
 

@@ -7,15 +7,12 @@
 #include "fgc/ar_template_generation.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/error.hpp"
+#include "core/field_names.hpp"
 
 namespace filmgrain::vfgs {
 
 namespace {
 
-std::string comp_field(const char* name, int c) { return std::string(name) + "[" + std::to_string(c) + "]"; }
-std::string row_field(const char* name, int c, int i) {
-    return std::string(name) + "[" + std::to_string(c) + "][" + std::to_string(i) + "]";
-}
 std::string value_field(int c, int i, int m) { return fgc::comp_model_value_name(c, i, m); }
 
 [[noreturn]] void fail(ErrorCode code, const std::string& msg) { throw Error(code, "vfgs: " + msg); }
@@ -91,13 +88,13 @@ void validate_params(const FgcParams& p, int gain_percent) {
     for (int c = 0; c < 3; ++c) {
         const FgcComponentModel& cm = p.comp[c];
         if (!cm.comp_model_present_flag) continue;
-        check_range(comp_field("num_model_values_minus1", c), cm.num_model_values_minus1, 0, 5);
-        check_range(comp_field("num_intensity_intervals_minus1", c),
+        check_range(indexed("num_model_values_minus1", c), cm.num_model_values_minus1, 0, 5);
+        check_range(indexed("num_intensity_intervals_minus1", c),
                     static_cast<long long>(cm.intervals.size()) - 1, 0, 255);
         for (int i = 0; i < static_cast<int>(cm.intervals.size()); ++i) {
             const FgcIntensityInterval& iv = cm.intervals[static_cast<size_t>(i)];
-            check_range(row_field("intensity_interval_lower_bound", c, i), iv.intensity_interval_lower_bound, 0, 255);
-            check_range(row_field("intensity_interval_upper_bound", c, i), iv.intensity_interval_upper_bound,
+            check_range(indexed("intensity_interval_lower_bound", c, i), iv.intensity_interval_lower_bound, 0, 255);
+            check_range(indexed("intensity_interval_upper_bound", c, i), iv.intensity_interval_upper_bound,
                         iv.intensity_interval_lower_bound, 255, ErrorCode::kInvalidParams,
                         " (the upper bound may not be below the lower bound)");
             const auto v = complete_model_values(iv.comp_model_value, cm.num_model_values_minus1 + 1, model,
