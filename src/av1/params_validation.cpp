@@ -3,8 +3,8 @@
 #include <string>
 #include <utility>
 
-#include "filmgrain/error.hpp"
 #include "core/field_names.hpp"
+#include "filmgrain/error.hpp"
 
 namespace filmgrain::av1 {
 namespace {
@@ -23,7 +23,6 @@ void check_range(const Name& field, long long value, long long lo, long long hi)
     if (value < lo || value > hi)
         throw Error(ErrorCode::kInvalidParams, out_of_range_message(field_name(field), value, lo, hi));
 }
-
 
 // Points of one scaling function: values 8 bits and strictly increasing (the
 // spec requires it so that the interpolation divides by a positive run).

@@ -17,12 +17,12 @@
 #include "bitstream/afgs1_in_stream.hpp"
 #include "bitstream/sei_messages.hpp"
 #include "bitstream/stream_scan.hpp"
+#include "core/field_names.hpp"
 #include "core/thread_pool.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/filmgrain.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
-#include "core/field_names.hpp"
 
 struct fg_context {
     filmgrain::Session grain;
@@ -261,7 +261,6 @@ constexpr std::size_t kFrameInfoV1Size = sizeof(fg_frame_info);
 constexpr std::size_t kAv1ParamsV1Size = sizeof(fg_av1_params);
 
 const char* const kNullContext = "fg_context is NULL";
-
 
 // A failure's message into a caller's buffer (NUL-terminated, truncated), for the functions
 // that have no context to keep it in.
@@ -553,7 +552,6 @@ fg_status fg_context_push_afgs1_t35(fg_context* ctx, const uint8_t* payload, siz
         ctx->grain.receive_afgs1_t35(payload, size);
     });
 }
-
 
 fg_status fg_context_reset(fg_context* ctx) {
     if (!ctx) return FG_ERROR_INVALID_ARGUMENT;

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <string>
 
-#include "filmgrain/error.hpp"
 #include "core/field_names.hpp"
+#include "filmgrain/error.hpp"
 
 namespace filmgrain {
 

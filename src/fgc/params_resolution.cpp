@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <string>
 
+#include "core/field_names.hpp"
 #include "fgc/ar_template_generation.hpp"
 #include "filmgrain/error.hpp"
-#include "core/field_names.hpp"
 
 namespace filmgrain::fgc {
 namespace {

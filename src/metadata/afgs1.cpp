@@ -4,16 +4,15 @@
 #include <set>
 #include <string>
 
+#include "core/field_names.hpp"
 #include "filmgrain/error.hpp"
 #include "metadata/afgs1_fields.hpp"
 #include "metadata/bit_reader.hpp"
-#include "core/field_names.hpp"
 
 namespace filmgrain {
 namespace {
 
 [[noreturn]] void malformed(const std::string& msg) { throw Error(ErrorCode::kMalformedPayload, "AFGS1: " + msg); }
-
 
 using afgs1_fields::ar_coeffs_of;
 using afgs1_fields::mults_of;

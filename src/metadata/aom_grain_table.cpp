@@ -3,8 +3,8 @@
 #include <charconv>
 #include <cstdio>
 
-#include "filmgrain/error.hpp"
 #include "core/field_names.hpp"
+#include "filmgrain/error.hpp"
 
 namespace filmgrain {
 namespace {
@@ -74,7 +74,6 @@ private:
     std::string_view keyword_;
     std::size_t index_ = 1;  // token 0 is the keyword
 };
-
 
 }  // namespace
 

@@ -2,9 +2,9 @@
 
 #include <string>
 
+#include "core/field_names.hpp"
 #include "filmgrain/error.hpp"
 #include "metadata/json_access.hpp"
-#include "core/field_names.hpp"
 
 namespace filmgrain {
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <memory>
 #include <limits>
-#include "core/field_names.hpp"
+#include <memory>
 
+#include "core/field_names.hpp"
 
 namespace filmgrain {
 

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <string>
 
+#include "core/field_names.hpp"
 #include "fgc/ar_template_generation.hpp"
 #include "fgc/params_resolution.hpp"
 #include "filmgrain/error.hpp"
-#include "core/field_names.hpp"
 
 namespace filmgrain::vfgs {
 
