@@ -1,7 +1,8 @@
 // Checkasm-style equivalence of the FGC kernels that take int8 grain (the narrow scaled
 // tables) with the scalar reference stages, for every vector target this CPU runs (each
-// forced in turn): random widths (vector tails included), block sizes, bit depths and grain
-// over the whole int8 range, so that the clipping at both ends is exercised.
+// forced in turn): random widths (vector tails included), block sizes, bit depths, grain
+// over the whole int8 range and 16-bit samples above the bit depth, so that the clipping at
+// both ends is exercised.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -70,7 +71,10 @@ TEST_P(FgcSimdEquivalence, DeblockAndBlendInt8Grain16Bit) {
         const NarrowRow g(width, bs, rng);
         std::vector<uint16_t> src(std::size_t(width) + 1), want(src.size(), 0xA5A5), got(src.size(), 0xA5A5);
         const int max_value = (1 << bd) - 1;
-        for (auto& v : src) v = uint16_t(uniform(0, 3) == 0 ? max_value * uniform(0, 1) : uniform(0, max_value));
+        // in a quarter of the rows samples of any 16-bit value: above the bit depth (bad input)
+        // the kernels must clip as the reference's 32-bit sum does
+        const int top = uniform(0, 3) == 0 ? 65535 : max_value;
+        for (auto& v : src) v = uint16_t(uniform(0, 3) == 0 ? top * uniform(0, 1) : uniform(0, top));
         fgc::blend_row_additive<uint16_t>(src.data(), want.data(), g.deblocked.data(), width, bd);
         // rows to prefetch (the next stripe's in the synthesis), each half the time: no effect
         test_support::PrefetchedRows<uint16_t> ahead(src.size());
@@ -136,7 +140,9 @@ void FgcSimdEquivalence::check_rows_from_blocks(int iterations) {
             else
                 blocks.push_back(table.data() + uniform(0, last - bs));
         std::vector<Pixel> src(std::size_t(src_stride) * rows + 1);
-        for (auto& v : src) v = Pixel(uniform(0, 3) == 0 ? max_value * uniform(0, 1) : uniform(0, max_value));
+        // 16-bit samples of any value in a quarter of the iterations (bad input above the bit depth)
+        const int top = sizeof(Pixel) == 2 && uniform(0, 3) == 0 ? 65535 : max_value;
+        for (auto& v : src) v = Pixel(uniform(0, 3) == 0 ? top * uniform(0, 1) : uniform(0, top));
         std::vector<Pixel> want(std::size_t(dst_stride) * rows + 1, Pixel(0xA5A5)), got(want);
         for (int r = 0; r < rows; r++) {
             std::vector<int32_t> grain(std::size_t(padded) + 2, 0);

@@ -31,7 +31,9 @@ inline void DeblockBlendBlockRowsU16(const uint16_t* src, std::ptrdiff_t src_str
         return v;
     };
     const int end = std::min(grain_end, width + 1);  // columns that can reach the output; 0 from here
-    const __m512i zero = _mm512_setzero_si512(), vmax = _mm512_set1_epi16(int16_t((1 << bit_depth) - 1));
+    // samples above the bit depth (bad input) as DeblockBlendRowU16Narrow takes them: the top
+    // bit flipped around a signed saturating add is an unsigned one
+    const __m512i top_bit = _mm512_set1_epi16(int16_t(-32768)), vmax = _mm512_set1_epi16(int16_t((1 << bit_depth) - 1));
     const __m128i count = _mm_cvtsi32_si128(bit_depth - 8);
     // The last and first column of every block. Column 0 has no edge on its left, and no
     // edge lies at `width` for the last column to be left of.
@@ -47,13 +49,15 @@ inline void DeblockBlendBlockRowsU16(const uint16_t* src, std::ptrdiff_t src_str
         const __m512i g = _mm512_sll_epi16(_mm512_mask_blend_epi16(filtered, b, f), count);
         const uint16_t* s = src + r * src_stride + x;
         uint16_t* d = dst + r * dst_stride + x;
+        auto add = [&](__m512i sv) {
+            const __m512i v = _mm512_xor_si512(_mm512_adds_epi16(_mm512_xor_si512(sv, top_bit), g), top_bit);
+            return _mm512_min_epu16(v, vmax);
+        };
         if (x + 32 <= width) {
-            const __m512i v = _mm512_adds_epi16(_mm512_loadu_si512(s), g);
-            _mm512_storeu_si512(d, _mm512_min_epi16(_mm512_max_epi16(v, zero), vmax));
+            _mm512_storeu_si512(d, add(_mm512_loadu_si512(s)));
         } else {
             const __mmask32 inside = first_n(width - x);
-            const __m512i v = _mm512_adds_epi16(_mm512_maskz_loadu_epi16(inside, s), g);
-            _mm512_mask_storeu_epi16(d, inside, _mm512_min_epi16(_mm512_max_epi16(v, zero), vmax));
+            _mm512_mask_storeu_epi16(d, inside, add(_mm512_maskz_loadu_epi16(inside, s)));
         }
         PrefetchAhead(ahead.below(r, src_stride, dst_stride), x);
     };

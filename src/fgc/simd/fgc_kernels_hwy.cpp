@@ -215,8 +215,10 @@ void DeblockBlendRowU8I8(const uint8_t* src, uint8_t* dst, const int8_t* grain, 
 
 // Up to 12 bits everything fits int16 lanes (twice as many per vector as int32): with
 // |grain| <= 32385 >> (16 - bd), the [1 2 1] sum is at most 4 * 2024 and the shifted grain
-// at most 32385; src + grain may pass 32767 only where the clip to 2^bd - 1 applies anyway,
-// so a saturating add gives the same result.
+// at most 32385. The sample is unsigned and may exceed the bit depth (bad input, which the
+// reference's 32-bit clip still handles): flipping its top bit maps 0..65535 onto the signed
+// range in order, so the signed saturating add is the unsigned sum clamped to 0..65535,
+// and flipping back leaves only the clip to 2^bd - 1.
 template <typename G>
 void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain, int width, int block_size,
                               int bit_depth, NextStripeRow<uint16_t> ahead) {
@@ -225,7 +227,8 @@ void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain
     const int n = int(hn::Lanes(d16));
     const int shift = bit_depth - 8;
     const int32_t max_value = (1 << bit_depth) - 1;
-    const auto vmax = hn::Set(d16, int16_t(max_value));
+    const auto vmax = hn::Set(du16, uint16_t(max_value));
+    const auto top_bit = hn::Set(d16, int16_t(-32768));
     const auto last = hn::Set(d16, int16_t(block_size - 1));
     auto blend1 = [&](int x) {
         dst[x] = uint16_t(std::clamp<int32_t>(src[x] + deblocked_scalar(grain, x, width, block_size) * (1 << shift), 0,
@@ -243,9 +246,9 @@ void DeblockBlendRowU16Narrow(const uint16_t* src, uint16_t* dst, const G* grain
         const auto c = load(grain + at + 1);
         const auto f = hn::ShiftRight<2>(hn::Add(hn::Add(a, c), hn::ShiftLeft<1>(b)));
         const auto g = hn::ShiftLeftSame(hn::IfThenElse(edge, f, b), shift);
-        const auto s = hn::BitCast(d16, hn::LoadU(du16, src + at));
-        const auto v = hn::Min(hn::Max(hn::SaturatedAdd(s, g), hn::Zero(d16)), vmax);
-        hn::StoreU(hn::BitCast(du16, v), du16, dst + at);
+        const auto s = hn::Xor(hn::BitCast(d16, hn::LoadU(du16, src + at)), top_bit);
+        const auto v = hn::BitCast(du16, hn::Xor(hn::SaturatedAdd(s, g), top_bit));
+        hn::StoreU(hn::Min(v, vmax), du16, dst + at);
     };
     int x = 1;
     blend1(0);
