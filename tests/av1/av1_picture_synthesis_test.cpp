@@ -244,21 +244,45 @@ TEST(Av1Synthesis, RestrictedRangeKeepsSamplesInside) {
 
 // A picture whose samples exceed its declared bit depth (16-bit data labelled 10-bit, say)
 // is bad input the library cannot afford to scan for; it must still never read outside its
-// tables (the sanitizer build checks) and must write samples within the range.
+// tables (the sanitizer build checks), must write samples within the range, and the optimized
+// kernels must write what the reference's do, out of place and in place: on a picture of such
+// samples only, and on one where a few lie among valid ones (the vector forms leave the steps
+// or rows holding one to their scalar forms).
 TEST(Av1Synthesis, SamplesAboveTheBitDepthStayInBounds) {
     const auto p = full_params();
-    for (int bd : {10, 12})
-        for (Kernels k : {Kernels::kReference, Kernels::kOptimized}) {
-            FrameBuffer src(288, 64, PixelFormat{ChromaFormat::k420, bd}), dst(288, 64, src.format());
-            auto* in = reinterpret_cast<uint16_t*>(src.bytes());
-            std::mt19937 rng(5);
-            for (std::size_t i = 0; i < src.byte_size() / 2; ++i)
-                in[i] = uint16_t(i % 3 == 0 ? 0xFFFF : (1 << bd) + rng() % 60000);
-            Av1PictureSynthesis s(1, k);
-            s.apply(p, src.view(), dst.view(), 1);
-            const auto* out = reinterpret_cast<const uint16_t*>(dst.bytes());
-            for (std::size_t i = 0; i < dst.byte_size() / 2; ++i) ASSERT_LT(out[i], 1 << bd) << "sample " << i;
+    for (int bd : {10, 12}) {
+        for (bool few : {false, true}) {
+            std::vector<uint8_t> reference_output;
+            for (Kernels k : {Kernels::kReference, Kernels::kOptimized}) {
+                FrameBuffer src(288, 64, PixelFormat{ChromaFormat::k420, bd}), dst(288, 64, src.format());
+                auto* in = reinterpret_cast<uint16_t*>(src.bytes());
+                std::mt19937 rng(5);
+                for (std::size_t i = 0; i < src.byte_size() / 2; ++i) {
+                    const uint32_t r = rng();
+                    in[i] = uint16_t(few && r % 300 != 0 ? r % (1u << bd)
+                                     : i % 3 == 0        ? 0xFFFF
+                                                         : (1 << bd) + r % 60000);
+                }
+                Av1PictureSynthesis s(1, k);
+                s.apply(p, src.view(), dst.view(), 1);
+                const auto* out = reinterpret_cast<const uint16_t*>(dst.bytes());
+                for (std::size_t i = 0; i < dst.byte_size() / 2; ++i) ASSERT_LT(out[i], 1 << bd) << "sample " << i;
+                if (k == Kernels::kReference)
+                    reference_output.assign(dst.bytes(), dst.bytes() + dst.byte_size());
+                else
+                    EXPECT_TRUE(std::equal(reference_output.begin(), reference_output.end(), dst.bytes()))
+                        << "bit depth " << bd << (few ? ", a few samples above it" : "")
+                        << ": the optimized kernels differ from the reference";
+                // in place too (where the kernels' output overwrites the input they check)
+                FrameBuffer same(288, 64, src.format());
+                std::copy(src.bytes(), src.bytes() + src.byte_size(), same.bytes());
+                s.apply(p, same.view(), same.view(), 1);
+                EXPECT_TRUE(std::equal(reference_output.begin(), reference_output.end(), same.bytes()))
+                    << "bit depth " << bd << " in place, " << (k == Kernels::kReference ? "reference" : "optimized")
+                    << (few ? ", a few samples above the bit depth" : "");
+            }
         }
+    }
 }
 
 TEST(Av1Synthesis, FrameViewErrors) {

@@ -175,16 +175,17 @@ TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRows) {
 // Samples beyond the declared bit depth (bad input nobody scans for): the references read
 // the scaling function's last entry for them (ScalingLookup), and every vector form must too,
 // whether a few such samples sit among valid ones near the top of the range or all are
-// large (below 2^14, where the 16-bit arithmetic of the kernels, co-sited pair sums included,
-// still holds).
+// large, up to 65535 (rows holding a sample above the bit depth take the scalar form:
+// AnyAboveBitDepth).
 TEST_P(SimdAv1BlendRowsEquivalence, SamplesBeyondTheBitDepth) {
     for (int iter = 0; iter < 60; iter++) {
         const int bd = 10, width = uniform(0, 1) ? 1920 : uniform(1, 700);
         // a few rows of the scale table around its end (where the vector forms look up a
-        // step's rows at once), a wider band, or anything
-        const int range = uniform(0, 2);
+        // step's rows at once), a wider band, anything, or valid samples with a few of any
+        // value among them (steps left to the scalar form beside vector ones)
+        const int range = uniform(0, 3);
         const int bottom = range == 0 ? 1005 : range == 1 ? 900 : 0;
-        const int top = range == 0 ? 1035 : range == 1 ? 1200 : 16383;
+        const int top = range == 0 ? 1035 : range == 1 ? 1200 : range == 2 ? 65535 : 1023;
         // a scaling function that still changes within the table's last rows, so that a
         // wrong entry there shows
         const int values[4] = {uniform(0, 120), uniform(121, 251), 252, 255};
@@ -197,8 +198,11 @@ TEST_P(SimdAv1BlendRowsEquivalence, SamplesBeyondTheBitDepth) {
         const TemplateNoise luma_noise(width, 32, bd, 4, uniform(0, 2), rng);
         const TemplateNoise chroma_noise(width, uniform(0, 1) ? 16 : 32, bd, 4, uniform(0, 2), rng);
         std::vector<uint16_t> luma(static_cast<std::size_t>(width)), chroma(luma.size());
-        for (auto& v : luma) v = uint16_t(uniform(bottom, top));
-        for (auto& v : chroma) v = uint16_t(uniform(bottom, top));
+        auto sample = [&] {
+            return uint16_t(range == 3 && uniform(0, 150) == 0 ? uniform(1024, 65535) : uniform(bottom, top));
+        };
+        for (auto& v : luma) v = sample();
+        for (auto& v : chroma) v = sample();
         std::vector<uint16_t> want(luma.size()), got(luma.size());
         av1::blend_luma_row<uint16_t>(luma.data(), want.data(), luma_noise.flat.data(), width, scaling, shift,
                                       clip.min_value, clip.max_luma);
@@ -207,7 +211,7 @@ TEST_P(SimdAv1BlendRowsEquivalence, SamplesBeyondTheBitDepth) {
         ASSERT_EQ(got, want) << "luma, iteration " << iter << " width " << width << " top " << top;
         // chroma with luma of its width, or subsampled with luma twice as wide
         const int subx = uniform(0, 1), luma_width = width << subx;
-        for (int i = width; i < luma_width; i++) luma.push_back(uint16_t(uniform(bottom, top)));
+        for (int i = width; i < luma_width; i++) luma.push_back(sample());
         av1::blend_chroma_row<uint16_t>(chroma.data(), want.data(), luma.data(), luma_width,
                                         chroma_noise.flat.data(), width, subx, index, scaling, shift, bd,
                                         clip.min_value, clip.max_chroma);

@@ -321,6 +321,75 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
     }
 }
 
+// Above 8 bits the vector forms hold the spec's integers only for samples below 2^14 (their
+// 16-bit pair sums, the chroma index's multiply-add and the saturating sum treat the top bits
+// as a sign). Samples above the bit depth are bad input nobody scans for beforehand, so that
+// the output does not depend on the kernels even then, the vector forms check what they read
+// and leave steps or rows holding one to the scalar forms here, whose int arithmetic is the
+// reference's for any 16-bit sample.
+
+// Samples [x, end) of a luma row one by one, and with co_sited its co-sited averages of the
+// whole pairs in [x, end) (x even), made first: in place, the blend overwrites the samples.
+inline void BlendLumaScalar(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int x, int end, int width,
+                            const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                            uint16_t* co_sited) {
+    if (co_sited)
+        for (int c = x / 2; c < (end + 1) / 2; ++c) co_sited[c] = static_cast<uint16_t>(co_sited_luma(src, width, c));
+    for (; x < end; ++x) {
+        const int v = src[x] + round2_signed(scaling(src[x]) * noise.at(x), scaling_shift);
+        dst[x] = static_cast<uint16_t>(v < min_value ? min_value : v > max_value ? max_value : v);
+    }
+}
+
+// Chroma samples [x, end) one by one, as BlendChromaScalar, scaled by the ScalingLookup.
+inline void BlendChromaLookedUp(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                                const BlockNoiseRow& noise, int x, int end, int subsampling_x,
+                                const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                                int bit_depth, int min_value, int max_value) {
+    BlendChromaScalar(
+        src, dst, luma, luma_width, noise, x, end, subsampling_x, index,
+        [&](int merged, int nz) { return round2_signed(scaling(merged) * nz, scaling_shift); }, bit_depth, min_value,
+        max_value);
+}
+
+// After a 10-bit form that left out the steps holding a sample above the bit depth (their
+// output not written, so that in place their samples are still there): its steps before
+// `end`, where its tail began (64 samples each, the last one 32 where the AVX2 form took 32),
+// where bad(x, n), the scalar way, scalar(x, n). A step it blended holds samples within the
+// bit depth (out of place) or its output (in place) by now, so it does not count as bad.
+template <class Bad, class Scalar>
+void BlendSkippedSteps(int end, Bad&& bad, Scalar&& scalar) {
+    for (int x = 0; x < end; x += 64) {
+        const int n = std::min(64, end - x);
+        if (bad(x, n)) scalar(x, n);
+    }
+}
+
+// Whether any of n samples lies above the bit depth.
+bool AnyAboveBitDepth(const uint16_t* p, int n, int bit_depth) {
+    const hn::ScalableTag<uint16_t> du16;
+    const int lanes = int(hn::Lanes(du16));
+    auto any = hn::Zero(du16);
+    int x = 0;
+    for (; x + lanes <= n; x += lanes) any = hn::Or(any, hn::LoadU(du16, p + x));
+    unsigned tail = 0;
+    for (; x < n; ++x) tail |= p[x];
+    const uint16_t above = uint16_t(~((1u << bit_depth) - 1u));
+    return (tail & above) != 0 || !hn::AllFalse(du16, hn::Ne(hn::And(any, hn::Set(du16, above)), hn::Zero(du16)));
+}
+
+// Runs blend(), a row's vector forms that do not check their steps, and returns whether the
+// samples it read lie within the bit depth, bad() saying whether any does not: checked after
+// blend() has brought them into the first-level cache (checked before, the rows came from
+// memory twice: AV1 10-bit 1080p 0.60 to 0.72 ms per frame), except in place, where the output
+// would hide them: checked before, and blend() not run where they do not.
+template <class Bad, class Blend>
+bool CheckedRow(bool in_place, Bad&& bad, Blend&& blend) {
+    if (in_place && bad()) return false;
+    blend();
+    return in_place || !bad();
+}
+
 // 8 bits: the scaling function is the spec's 256-byte ScalingLut (values 0..255), looked up
 // with sixteen 16-entry byte shuffles. A shuffle yields 0 in lanes whose index has bit 7 set,
 // so an index saturated upwards by 16 per step stays valid (below 128) exactly for the steps
@@ -766,21 +835,30 @@ FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, co
                                           const ScalingLookup& scaling, int scaling_shift, int min_value,
                                           int max_value) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto scalar = [&](int x, int n) {
+        BlendLumaScalar(src, dst, row, x, x + n, width, scaling, scaling_shift, min_value, max_value, nullptr);
+    };
+    bool skipped = false;
+    int vector_end = width;  // where the tail began
     auto rest = [&](int x, const uint32_t* seams) {
+        vector_end = x;
+        if (AnyAboveBitDepth(src + x, width - x, 10)) return scalar(x, width - x);
         BlendLumaRowU16Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, 10,
                                min_value, max_value);
     };
     avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::Luma10Row<decltype(overlap)::value>(src, dst, row, width, scaling, scaling_shift, min_value,
-                                                    max_value, rest);
+                                                    max_value, skipped, rest);
     });
+    if (skipped)
+        BlendSkippedSteps(vector_end, [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10); }, scalar);
 }
 #endif
 
 // co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
 // rounding by a rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product).
 // The column whose right luma sample lies past an odd-width row is left to the scalar tail.
-void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
+void CoSitedLumaRowU16Unchecked(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
     const hn::ScalableTag<uint16_t> du16;
     [[maybe_unused]] const int n = int(hn::Lanes(du16));
     [[maybe_unused]] const int pairs = std::min(width, luma_width / 2);
@@ -805,6 +883,14 @@ void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t
         out[x] = static_cast<uint16_t>(co_sited_luma(luma, luma_width, x));
 }
 
+// The AVX2 form's pair sums hold 15 bits: luma from 2^14 on (bad input) is averaged again the
+// scalar way. (The output is scratch, never the luma: checked after.)
+void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
+    CoSitedLumaRowU16Unchecked(luma, luma_width, width, out);
+    if (AnyAboveBitDepth(luma, std::min(luma_width, 2 * width), 14))
+        for (int x = 0; x < width; ++x) out[x] = static_cast<uint16_t>(co_sited_luma(luma, luma_width, x));
+}
+
 #if HWY_TARGET == HWY_AVX2
 // 10 bits 64 samples per step in registers (blend_10bit_avx2-inl.h); the samples after the
 // last whole 32 the generic way.
@@ -812,19 +898,30 @@ void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow
                          const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
                          uint16_t* co_sited) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto scalar = [&](int x, int n) {
+        BlendLumaScalar(src, dst, row, x, x + n, width, scaling, scaling_shift, min_value, max_value, co_sited);
+    };
+    bool skipped = false;
+    int vector_end = width;  // where the tail began
     auto rest = [&](int x) {
-        if (co_sited) CoSitedLumaRowU16(src + x, width - x, (width + 1) / 2 - x / 2, co_sited + x / 2);
+        vector_end = x;
+        if (AnyAboveBitDepth(src + x, width - x, 10)) return scalar(x, width - x);
+        if (co_sited) CoSitedLumaRowU16Unchecked(src + x, width - x, (width + 1) / 2 - x / 2, co_sited + x / 2);
         BlendLumaRowU16Generic(src, dst, row, width, scaling, scaling_shift, 10, min_value, max_value, x);
     };
     avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
         avx2::WithFlag(co_sited != nullptr, [&](auto with_co_sited) FG_INLINE_LAMBDA {
             avx2::Luma10Row<decltype(overlap)::value, decltype(with_co_sited)::value>(
-                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, rest);
+                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, skipped, rest);
         });
     });
+    if (skipped)
+        BlendSkippedSteps(vector_end, [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10); }, scalar);
 }
 #endif
 
+// The 10-bit forms check each step as they read it; the generic ones are checked by the row
+// (CheckedRow), which is made again the scalar way where it holds a sample above the bit depth.
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
                      uint16_t* co_sited) {
@@ -832,12 +929,20 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
     if (bit_depth == 10 && noise.block_width == 32)
         return BlendLumaRowU10Avx2(src, dst, noise, width, scaling, scaling_shift, min_value, max_value, co_sited);
 #endif
-    if (co_sited) CoSitedLumaRowU16(src, width, (width + 1) / 2, co_sited);
 #if HWY_TARGET == HWY_AVX3
-    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
+    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi()) {
+        if (co_sited) CoSitedLumaRowU16Unchecked(src, width, (width + 1) / 2, co_sited);  // exact on this target
         return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+    }
 #endif
-    BlendLumaRowU16Generic(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value, max_value);
+    if (!CheckedRow(
+            src == dst, [&] { return AnyAboveBitDepth(src, width, bit_depth); },
+            [&] {
+                if (co_sited) CoSitedLumaRowU16Unchecked(src, width, (width + 1) / 2, co_sited);
+                BlendLumaRowU16Generic(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value,
+                                       max_value);
+            }))
+        BlendLumaScalar(src, dst, noise, 0, width, width, scaling, scaling_shift, min_value, max_value, co_sited);
 }
 
 // The last chroma column of an odd-width subsampled picture pairs the last luma sample with
@@ -1036,7 +1141,16 @@ FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, 
                                             const ScalingLookup& scaling, int scaling_shift, int min_value,
                                             int max_value) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto scalar = [&](int x, int n) {
+        BlendChromaLookedUp(src, dst, luma, luma_width, row, x, x + n, 0, index, scaling, scaling_shift, 10, min_value,
+                            max_value);
+    };
+    bool skipped = false;
+    auto bad = [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10) || AnyAboveBitDepth(luma + x, n, 10); };
+    int vector_end = width;  // where the tail began
     auto rest = [&](int x, const uint32_t* seams) {
+        vector_end = x;
+        if (bad(x, width - x)) return scalar(x, width - x);
         BlendChromaRowU16Generic(src + x, dst + x, luma + x, luma_width - x, avx512::RowFrom(row, x, seams), width - x,
                                  0, index, scaling, scaling_shift, 10, min_value, max_value);
     };
@@ -1045,10 +1159,11 @@ FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, 
             avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
                 avx512::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
                                     decltype(overlap)::value>(src, dst, luma, row, width, index, scaling,
-                                                              scaling_shift, min_value, max_value, rest);
+                                                              scaling_shift, min_value, max_value, skipped, rest);
             });
         });
     });
+    if (skipped) BlendSkippedSteps(vector_end, bad, scalar);
 }
 #endif
 
@@ -1059,7 +1174,16 @@ void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* l
                            const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
                            const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
+    auto scalar = [&](int x, int n) {
+        BlendChromaLookedUp(src, dst, luma, luma_width, row, x, x + n, 0, index, scaling, scaling_shift, 10, min_value,
+                            max_value);
+    };
+    bool skipped = false;
+    auto bad = [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10) || AnyAboveBitDepth(luma + x, n, 10); };
+    int vector_end = width;  // where the tail began
     auto rest = [&](int x) {
+        vector_end = x;
+        if (bad(x, width - x)) return scalar(x, width - x);
         BlendChromaRowU16Generic(src, dst, luma, luma_width, row, width, 0, index, scaling, scaling_shift, 10,
                                  min_value, max_value, x);
     };
@@ -1068,13 +1192,15 @@ void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* l
             avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
                 avx2::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
                                   decltype(overlap)::value>(src, dst, luma, row, width, index, scaling, scaling_shift,
-                                                            min_value, max_value, rest);
+                                                            min_value, max_value, skipped, rest);
             });
         });
     });
+    if (skipped) BlendSkippedSteps(vector_end, bad, scalar);
 }
 #endif
 
+// As BlendLumaRowU16: the 10-bit forms check their steps, the generic ones the row.
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                        const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
@@ -1089,8 +1215,16 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
         return BlendChromaRowU10Avx2(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
                                      min_value, max_value);
 #endif
-    BlendChromaRowU16Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling, scaling_shift,
-                             bit_depth, min_value, max_value);
+    const int luma_read = std::min(luma_width, width << subsampling_x);
+    if (!CheckedRow(
+            src == dst,
+            [&] { return AnyAboveBitDepth(src, width, bit_depth) || AnyAboveBitDepth(luma, luma_read, bit_depth); },
+            [&] {
+                BlendChromaRowU16Generic(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
+                                         scaling_shift, bit_depth, min_value, max_value);
+            }))
+        BlendChromaLookedUp(src, dst, luma, luma_width, noise, 0, width, subsampling_x, index, scaling, scaling_shift,
+                            bit_depth, min_value, max_value);
 }
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are

@@ -7,9 +7,10 @@
 // (InterpolatedScales) and blend in a second pass that loads every sample again. Here a step
 // keeps its indices, scales and sums in registers, and looks its scales up by byte shuffles
 // over the rows of the full-range table its indices span (Scales10), the indices clamped to
-// the table first, so that every form is exact for any sample (ScalingLookup reads the last
-// entry beyond the bit depth). 16-bit lanes hold samples in order throughout (the byte
-// packing pairs lanes, never crosses them), so no permutes are needed.
+// the table first (ScalingLookup reads the last entry beyond the bit depth); a step holding a
+// sample above 10 bits is left to the caller's scalar form (AnyAbove10Bits). 16-bit lanes hold
+// samples in order throughout (the byte packing pairs lanes, never crosses them), so no
+// permutes are needed.
 #if HWY_TARGET == HWY_AVX2
 
 namespace avx2 {
@@ -129,6 +130,12 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
     for (int g = 0; g < kVectors; ++g) scale[g] = _mm256_load_si256(reinterpret_cast<const __m256i*>(scales + 16 * g));
 }
 
+// Whether a sample of the OR of a step's samples lies above 10 bits (bad input): the 16-bit
+// arithmetic here (pair sums, multiply-adds, the saturating sum) holds the spec's integers
+// only below 2^14, so such a step writes nothing and sets `skipped`, for the caller to blend
+// it the scalar way (its samples still there, in place too).
+HWY_INLINE bool AnyAbove10Bits(__m256i any) { return !_mm256_testz_si256(any, _mm256_set1_epi16(int16_t(0xFC00))); }
+
 // clip(src + Round2(scale * noise, shift)) of 16 samples into dst (the sum saturating, so
 // that samples beyond the bit depth clip as the spec's integers do).
 HWY_INLINE void StoreBlended10(const Step10Constants& c, uint16_t* dst, __m256i src, __m256i scale, __m256i noise) {
@@ -173,10 +180,11 @@ HWY_INLINE void BlendStep10(const StepConstants& fade, const Step10Constants& c,
 // blend_luma_row at 10 bits: the samples, clamped to the table, are their own indices. With
 // kCoSited, also co_sited_luma_row of the clean samples into co_sited (CoSitedLumaRowU16's
 // arithmetic: pair sums by a multiply-add with ones, halved with rounding by a rounding high
-// multiply by 1 << 14). `rest(x)` takes the samples after the last whole 32.
+// multiply by 1 << 14). `rest(x)` takes the samples after the last whole 32; `skipped`: a
+// step holding a sample above 10 bits was left out, co-sited luma included.
 template <Overlap kOverlap, bool kCoSited, class Rest>
 void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width, const ScalingLookup& scaling,
-               int scaling_shift, int min_value, int max_value, uint16_t* co_sited, Rest&& rest) {
+               int scaling_shift, int min_value, int max_value, uint16_t* co_sited, bool& skipped, Rest&& rest) {
     const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
     const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
     ForEachStep(
@@ -184,9 +192,15 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
         [&](int x, auto samples) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(samples)::value / 16;
             __m256i v[kVectors], index[kVectors];
+            __m256i any = _mm256_setzero_si256();
             for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
                 v[g] = Load256(src + x + 16 * g);
                 index[g] = _mm256_min_epu16(v[g], c.last);
+                any = _mm256_or_si256(any, v[g]);
+            }
+            if (AnyAbove10Bits(any)) {
+                skipped = true;
+                return;
             }
             if constexpr (kCoSited) {
                 // (sums of two samples below 2^15 fit int16)
@@ -208,11 +222,12 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
 // (clamped) or (luma * luma_mult + chroma * mult) >> 6 plus the offset, clipped: one
 // multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits), whose
 // pack back to 16 bits restores the order the in-lane interleave split. `rest(x)` blends the
-// samples after the last whole 32.
+// samples after the last whole 32; `skipped`: a step whose chroma or luma holds a sample above
+// 10 bits was left out.
 template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
 void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row, int width,
                  const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift, int min_value,
-                 int max_value, Rest&& rest) {
+                 int max_value, bool& skipped, Rest&& rest) {
     const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
     const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
     const __m256i mults =
@@ -231,10 +246,16 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
         [&](int x, auto samples) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(samples)::value / 16;
             __m256i v[kVectors], idx[kVectors];
+            __m256i any = _mm256_setzero_si256();
             for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
                 v[g] = Load256(src + x + 16 * g);
                 const __m256i l = Load256(luma + x + 16 * g);
+                any = _mm256_or_si256(any, _mm256_or_si256(v[g], l));
                 idx[g] = kFromLuma ? _mm256_min_epu16(l, c.last) : merged(l, v[g]);
+            }
+            if (AnyAbove10Bits(any)) {
+                skipped = true;
+                return;
             }
             BlendStep10<kBlockWidth, kOverlap>(fade, c, row, x, v, idx, dst);
         },

@@ -48,6 +48,14 @@ FG_AVX512_VBMI inline void Scales1024(const Lut1024& lut, __m512i index_low, __m
 // Twin of blend_luma_row at 10 bits; `rest(x, seams)` blends samples [x, width) the generic
 // way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
 // byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
+// Whether a sample of the OR of a step's samples lies above 10 bits (bad input): the 16-bit
+// arithmetic here holds the spec's integers only below 2^14, so such a step writes nothing and
+// sets `skipped`, for the caller to blend it the scalar way (its samples still there, in place
+// too). Not a call from the step: the call made the LUT's registers spill around every step.
+FG_AVX512_VBMI inline bool AnyAbove10Bits(__m512i any) {
+    return _mm512_test_epi16_mask(any, _mm512_set1_epi16(int16_t(0xFC00))) != 0;
+}
+
 // 32 samples of the output: src + Round2(scale * noise, shift), the rounding high multiply of
 // the q15 scale, clipped to [vmin, vmax].
 FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scale, __m512i noise, __m512i vmin,
@@ -56,10 +64,11 @@ FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scal
     _mm512_storeu_si512(dst, _mm512_min_epi16(_mm512_max_epi16(v, vmin), vmax));
 }
 
+// `skipped`: a step holding a sample above 10 bits was left out (AnyAbove10Bits).
 template <Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
                               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
-                              Rest&& rest) {
+                              bool& skipped, Rest&& rest) {
     Lut1024 lut;
     LoadLut1024(scaling.full_table(), lut);
     const SeamFade fade = MakeSeamFade(row);
@@ -68,6 +77,11 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
     ForEach64<32, kOverlap>(
         row, width, width,
         [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
+            if (AnyAbove10Bits(_mm512_or_si512(s_low, s_high))) {
+                skipped = true;
+                return;
+            }
             __m512i noise_low, noise_high;
             NoiseOf64<32, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
             if constexpr (kOverlap == Overlap::kFade) {
@@ -75,7 +89,6 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
                 noise_low = FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, fade);
                 noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
             }
-            const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
             __m512i scale_low, scale_high;
             Scales1024(lut, s_low, s_high, up_shift, scale_low, scale_high);
             StoreBlended(dst + x, s_low, scale_low, noise_low, vmin, vmax);
@@ -89,10 +102,11 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
 // generic way. The scaling index of chroma_scaling_index: luma * luma_mult + chroma * mult as
 // one multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits),
 // >> 6, and the pack back to 16 bits restores the sample order the interleave split.
+// `skipped`: a step whose chroma or luma holds a sample above 10 bits was left out.
 template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row,
                                 int width, const ChromaScalingIndex& index, const ScalingLookup& scaling,
-                                int scaling_shift, int min_value, int max_value, Rest&& rest) {
+                                int scaling_shift, int min_value, int max_value, bool& skipped, Rest&& rest) {
     Lut1024 lut;
     LoadLut1024(scaling.full_table(), lut);
     const SeamFade fade = MakeSeamFade(row);
@@ -111,6 +125,12 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
     ForEach64<kBlockWidth, kOverlap>(
         row, width, width,
         [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
+            __m512i i_low = _mm512_loadu_si512(luma + x), i_high = _mm512_loadu_si512(luma + x + 32);
+            if (AnyAbove10Bits(_mm512_or_si512(_mm512_ternarylogic_epi64(s_low, s_high, i_low, 0xFE), i_high))) {
+                skipped = true;
+                return;
+            }
             __m512i noise_low, noise_high;
             NoiseOf64<kBlockWidth, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
             if constexpr (kOverlap == Overlap::kFade) {
@@ -122,8 +142,6 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
                     noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
                 }
             }
-            const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
-            __m512i i_low = _mm512_loadu_si512(luma + x), i_high = _mm512_loadu_si512(luma + x + 32);
             if constexpr (!kFromLuma) {
                 i_low = merged(i_low, s_low);
                 i_high = merged(i_high, s_high);
