@@ -390,6 +390,58 @@ bool CheckedRow(bool in_place, Bad&& bad, Blend&& blend) {
     return in_place || !bad();
 }
 
+// What the caller of a 10-bit form keeps for the steps it leaves out (AnyAbove10Bits):
+// bad(x, n), whether samples [x, x + n) hold one above 10 bits; scalar(x, n), their scalar
+// blend; `skipped`, set by the form.
+template <class Bad, class Scalar>
+struct SkippedSteps {
+    Bad bad;
+    Scalar scalar;
+    int width;
+    bool skipped = false;
+    int vector_end;  // where the form's tail began
+    // The tail from x: the scalar way where it holds a sample above 10 bits, else generic().
+    template <class Generic>
+    void Tail(int x, Generic&& generic) {
+        vector_end = x;
+        if (bad(x, width - x))
+            scalar(x, width - x);
+        else
+            generic();
+    }
+    // After the form: the steps it left out.
+    void Finish() {
+        if (skipped) BlendSkippedSteps(vector_end, bad, scalar);
+    }
+};
+template <class Bad, class Scalar>
+SkippedSteps<Bad, Scalar> MakeSkippedSteps(int width, Bad bad, Scalar scalar) {
+    return {bad, scalar, width, false, width};
+}
+
+// SkippedSteps of a luma row (co-sited averages made too where co_sited) and of a chroma row
+// with unsubsampled luma, the row and scaling held by reference.
+inline auto LumaSkippedSteps(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
+                             const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                             uint16_t* co_sited) {
+    return MakeSkippedSteps(
+        width, [src](int x, int n) { return AnyAboveBitDepth(src + x, n, 10); },
+        [=, &row, &scaling](int x, int n) {
+            BlendLumaScalar(src, dst, row, x, x + n, width, scaling, scaling_shift, min_value, max_value, co_sited);
+        });
+}
+inline auto ChromaSkippedSteps(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                               const BlockNoiseRow& row, int width, const ChromaScalingIndex& index,
+                               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+    return MakeSkippedSteps(
+        width,
+        [src, luma](int x, int n) { return AnyAboveBitDepth(src + x, n, 10) || AnyAboveBitDepth(luma + x, n, 10); },
+        [=, &row, &index, &scaling](int x, int n) {
+            BlendChromaLookedUp(src, dst, luma, luma_width, row, x, x + n, 0, index, scaling, scaling_shift, 10,
+                                min_value, max_value);
+        });
+}
+
 // 8 bits: the scaling function is the spec's 256-byte ScalingLut (values 0..255), looked up
 // with sixteen 16-entry byte shuffles. A shuffle yields 0 in lanes whose index has bit 7 set,
 // so an index saturated upwards by 16 per step stays valid (below 128) exactly for the steps
@@ -835,23 +887,18 @@ FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, co
                                           const ScalingLookup& scaling, int scaling_shift, int min_value,
                                           int max_value) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto scalar = [&](int x, int n) {
-        BlendLumaScalar(src, dst, row, x, x + n, width, scaling, scaling_shift, min_value, max_value, nullptr);
-    };
-    bool skipped = false;
-    int vector_end = width;  // where the tail began
+    auto steps = LumaSkippedSteps(src, dst, row, width, scaling, scaling_shift, min_value, max_value, nullptr);
     auto rest = [&](int x, const uint32_t* seams) {
-        vector_end = x;
-        if (AnyAboveBitDepth(src + x, width - x, 10)) return scalar(x, width - x);
-        BlendLumaRowU16Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, 10,
-                               min_value, max_value);
+        steps.Tail(x, [&] {
+            BlendLumaRowU16Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling,
+                                   scaling_shift, 10, min_value, max_value);
+        });
     };
     avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::Luma10Row<decltype(overlap)::value>(src, dst, row, width, scaling, scaling_shift, min_value,
-                                                    max_value, skipped, rest);
+                                                    max_value, steps.skipped, rest);
     });
-    if (skipped)
-        BlendSkippedSteps(vector_end, [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10); }, scalar);
+    steps.Finish();
 }
 #endif
 
@@ -898,25 +945,20 @@ void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow
                          const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
                          uint16_t* co_sited) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto scalar = [&](int x, int n) {
-        BlendLumaScalar(src, dst, row, x, x + n, width, scaling, scaling_shift, min_value, max_value, co_sited);
-    };
-    bool skipped = false;
-    int vector_end = width;  // where the tail began
+    auto steps = LumaSkippedSteps(src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited);
     auto rest = [&](int x) {
-        vector_end = x;
-        if (AnyAboveBitDepth(src + x, width - x, 10)) return scalar(x, width - x);
-        if (co_sited) CoSitedLumaRowU16Unchecked(src + x, width - x, (width + 1) / 2 - x / 2, co_sited + x / 2);
-        BlendLumaRowU16Generic(src, dst, row, width, scaling, scaling_shift, 10, min_value, max_value, x);
+        steps.Tail(x, [&] {
+            if (co_sited) CoSitedLumaRowU16Unchecked(src + x, width - x, (width + 1) / 2 - x / 2, co_sited + x / 2);
+            BlendLumaRowU16Generic(src, dst, row, width, scaling, scaling_shift, 10, min_value, max_value, x);
+        });
     };
     avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
         avx2::WithFlag(co_sited != nullptr, [&](auto with_co_sited) FG_INLINE_LAMBDA {
             avx2::Luma10Row<decltype(overlap)::value, decltype(with_co_sited)::value>(
-                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, skipped, rest);
+                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, steps.skipped, rest);
         });
     });
-    if (skipped)
-        BlendSkippedSteps(vector_end, [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10); }, scalar);
+    steps.Finish();
 }
 #endif
 
@@ -1141,29 +1183,25 @@ FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, 
                                             const ScalingLookup& scaling, int scaling_shift, int min_value,
                                             int max_value) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto scalar = [&](int x, int n) {
-        BlendChromaLookedUp(src, dst, luma, luma_width, row, x, x + n, 0, index, scaling, scaling_shift, 10, min_value,
-                            max_value);
-    };
-    bool skipped = false;
-    auto bad = [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10) || AnyAboveBitDepth(luma + x, n, 10); };
-    int vector_end = width;  // where the tail began
+    auto steps = ChromaSkippedSteps(src, dst, luma, luma_width, row, width, index, scaling, scaling_shift, min_value,
+                                    max_value);
     auto rest = [&](int x, const uint32_t* seams) {
-        vector_end = x;
-        if (bad(x, width - x)) return scalar(x, width - x);
-        BlendChromaRowU16Generic(src + x, dst + x, luma + x, luma_width - x, avx512::RowFrom(row, x, seams), width - x,
-                                 0, index, scaling, scaling_shift, 10, min_value, max_value);
+        steps.Tail(x, [&] {
+            BlendChromaRowU16Generic(src + x, dst + x, luma + x, luma_width - x, avx512::RowFrom(row, x, seams),
+                                     width - x, 0, index, scaling, scaling_shift, 10, min_value, max_value);
+        });
     };
     avx512::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
             avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
                 avx512::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
                                     decltype(overlap)::value>(src, dst, luma, row, width, index, scaling,
-                                                              scaling_shift, min_value, max_value, skipped, rest);
+                                                              scaling_shift, min_value, max_value, steps.skipped,
+                                                              rest);
             });
         });
     });
-    if (skipped) BlendSkippedSteps(vector_end, bad, scalar);
+    steps.Finish();
 }
 #endif
 
@@ -1174,29 +1212,24 @@ void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* l
                            const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
                            const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto scalar = [&](int x, int n) {
-        BlendChromaLookedUp(src, dst, luma, luma_width, row, x, x + n, 0, index, scaling, scaling_shift, 10, min_value,
-                            max_value);
-    };
-    bool skipped = false;
-    auto bad = [&](int x, int n) { return AnyAboveBitDepth(src + x, n, 10) || AnyAboveBitDepth(luma + x, n, 10); };
-    int vector_end = width;  // where the tail began
+    auto steps = ChromaSkippedSteps(src, dst, luma, luma_width, row, width, index, scaling, scaling_shift, min_value,
+                                    max_value);
     auto rest = [&](int x) {
-        vector_end = x;
-        if (bad(x, width - x)) return scalar(x, width - x);
-        BlendChromaRowU16Generic(src, dst, luma, luma_width, row, width, 0, index, scaling, scaling_shift, 10,
-                                 min_value, max_value, x);
+        steps.Tail(x, [&] {
+            BlendChromaRowU16Generic(src, dst, luma, luma_width, row, width, 0, index, scaling, scaling_shift, 10,
+                                     min_value, max_value, x);
+        });
     };
     avx2::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA {
         avx2::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA {
             avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
                 avx2::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
                                   decltype(overlap)::value>(src, dst, luma, row, width, index, scaling, scaling_shift,
-                                                            min_value, max_value, skipped, rest);
+                                                            min_value, max_value, steps.skipped, rest);
             });
         });
     });
-    if (skipped) BlendSkippedSteps(vector_end, bad, scalar);
+    steps.Finish();
 }
 #endif
 
