@@ -26,6 +26,34 @@ namespace {
 std::string frame_description(const VideoInfo& info) {
     return std::to_string(info.width) + "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format);
 }
+
+// A 16-bit word above the declared bit depth: the data is not in the format named (a wrong
+// --pix-fmt or Y4M C tag, or samples in the high bits of their words, as P010 stores them).
+// Refused here, where a file is read anyway: the library does not scan pictures for such
+// samples (a pass over every picture) and blends them as the references' integers do, as
+// unsigned 16-bit values, which is rarely what was meant.
+void check_sample_range(FrameBuffer& frame, const std::string& path, int index) {
+    static const char* const kPlaneNames[3] = {"Y", "Cb", "Cr"};
+    const FrameView v = frame.view();
+    const unsigned max_value = (1u << v.bit_depth) - 1;
+    for (int p = 0; p < v.plane_count(); p++)
+        for (int y = 0; y < v.planes[p].height; y++) {
+            const uint16_t* row = v.planes[p].row<const uint16_t>(y);
+            unsigned any = 0;
+            for (int x = 0; x < v.planes[p].width; x++) any |= row[x];
+            if (any <= max_value) continue;
+            int x = 0;
+            while (row[x] <= max_value) x++;
+            throw Error(ErrorCode::kInvalidArgument,
+                        "'" + path + "' frame " + std::to_string(index) + ": " + kPlaneNames[p] + " sample " +
+                            std::to_string(row[x]) + " at x " + std::to_string(x) + ", y " + std::to_string(y) +
+                            " is above the " + std::to_string(v.bit_depth) + "-bit range 0.." +
+                            std::to_string(max_value) + ": is the data " + pix_fmt_name(frame.format()) +
+                            "? (each sample in the low " + std::to_string(v.bit_depth) +
+                            " bits of a little-endian 16-bit word; data in the high bits, as P010 stores it, "
+                            "reads as values up to 65535)");
+        }
+}
 }  // namespace
 
 VideoReader::VideoReader(const std::string& path, const VideoInfo& raw_info, bool force_raw) : path_(path) {
@@ -147,6 +175,7 @@ bool VideoReader::read(FrameBuffer& frame) {
                                         frame_description(info_) + ")");
     if constexpr (std::endian::native == std::endian::big)
         if (info_.format.bit_depth > 8) swap_bytes_16(frame.bytes(), want);
+    if (info_.format.bit_depth > 8 && info_.format.bit_depth < 16) check_sample_range(frame, path_, frames_);
     frames_++;
     return true;
 }

@@ -2,6 +2,7 @@
 // against its ASan/UBSan build, see tests/CMakeLists.txt).
 //  - sizes are checked against the picture limit and against the file before anything is
 //    allocated, and whole-file reads are bounded;
+//  - 10- and 12-bit samples above the bit depth are refused, naming where they are;
 //  - Y4M header numbers are parsed strictly; the Y4M the tool writes is what FFmpeg reads,
 //    and it reads what FFmpeg writes (every format, through Debian's ffmpeg binary);
 //  - a fatal signal removes the hidden partial output and kills the tool by that signal;
@@ -214,6 +215,40 @@ TEST_F(HardeningIo, Y4mFrameLargerThanTheFileIsRefusedBeforeAllocating) {
     EXPECT_NE(r.output.find("holds 3 bytes of frame data, less than one 16384x16384 yuv444p16le frame (1610612736 bytes)"),
               std::string::npos)
         << r.output;
+}
+
+// 16-bit words above the declared bit depth (a wrong --pix-fmt or Y4M tag, or P010-style data
+// in the high bits) were blended as unsigned 16-bit samples without a word; they are refused
+// naming the frame, plane, place, value and range, and nothing is written. 16-bit formats
+// take every value.
+TEST_F(HardeningIo, SamplesAboveTheBitDepthAreRefusedNamingThePlaceAndTheRange) {
+    const int w = 64, h = 32;
+    const std::size_t frame_words = std::size_t(w) * h * 3 / 2;
+    std::vector<uint16_t> words(2 * frame_words);
+    std::mt19937 rng(3);
+    for (auto& v : words) v = uint16_t(rng() % 1024);
+    // frame 1, Cb (after the luma plane), x 5, y 3
+    words[frame_words + std::size_t(w) * h + 3 * (w / 2) + 5] = 0x8000;
+    const std::string bytes(reinterpret_cast<const char*>(words.data()), words.size() * 2);
+    write_file(dir / "in.yuv", bytes);
+    write_file(dir / "in.y4m", "YUV4MPEG2 W64 H32 F25:1 C420p10\nFRAME\n" + bytes.substr(0, frame_words * 2) +
+                                   "FRAME\n" + bytes.substr(frame_words * 2));
+    for (const char* in : {"in.yuv", "in.y4m"}) {
+        const CommandResult r = run_tool("apply -i " + quoted(dir / in) + " --size 64x32 --pix-fmt yuv420p10le" +
+                                         params() + " -o " + quoted(dir / "out.yuv"));
+        ASSERT_TRUE(r.clean_error()) << r.output;
+        EXPECT_NE(r.output.find("'" + (dir / in).string() +
+                                "' frame 1: Cb sample 32768 at x 5, y 3 is above the 10-bit range 0..1023: is the "
+                                "data yuv420p10le?"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_FALSE(fs::exists(dir / "out.yuv")) << in;
+    }
+    // the same words as 16-bit samples are valid (one frame of 64x32 yuv420p16le is 6144 bytes)
+    const CommandResult ok = run_tool("apply -i " + quoted(dir / "in.yuv") + " --size 64x32 --pix-fmt yuv420p16le" +
+                                      params() + " -o " + quoted(dir / "out.yuv"));
+    EXPECT_TRUE(ok.exited_with(0)) << ok.output;
+    EXPECT_EQ(fs::file_size(dir / "out.yuv"), bytes.size());
 }
 
 // Y4M header numbers: W4294967312 wrapped to 16 (atoi); every number is now digits only and
