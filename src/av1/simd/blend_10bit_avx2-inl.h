@@ -136,8 +136,8 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
 // it the scalar way (its samples still there, in place too).
 HWY_INLINE bool AnyAbove10Bits(__m256i any) { return !_mm256_testz_si256(any, _mm256_set1_epi16(int16_t(0xFC00))); }
 
-// clip(src + Round2(scale * noise, shift)) of 16 samples into dst (the sum saturating, so
-// that samples beyond the bit depth clip as the spec's integers do).
+// clip(src + Round2(scale * noise, shift)) of 16 samples into dst (samples within 10 bits
+// here: steps holding others are left out, AnyAbove10Bits).
 HWY_INLINE void StoreBlended10(const Step10Constants& c, uint16_t* dst, __m256i src, __m256i scale, __m256i noise) {
     const __m256i v = _mm256_adds_epi16(src, _mm256_mulhrs_epi16(scale, noise));
     const __m256i clipped = _mm256_min_epi16(_mm256_max_epi16(v, c.min_value), c.max_value);
@@ -236,8 +236,7 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
     auto merged = [&](__m256i l, __m256i s) FG_INLINE_LAMBDA {
         const __m256i lo = _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(l, s), mults), 6);
         const __m256i hi = _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(l, s), mults), 6);
-        // saturating, so that samples up to 15 bits (bad input) still clip as the spec's
-        // integers do
+        // (10-bit samples keep it within int16: at most (2 * 1023 * 128) >> 6 plus the offset)
         const __m256i m = _mm256_adds_epi16(_mm256_packs_epi32(lo, hi), offset);
         return _mm256_min_epi16(_mm256_max_epi16(m, zero), c.last);
     };

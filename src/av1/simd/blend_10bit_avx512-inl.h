@@ -45,9 +45,6 @@ FG_AVX512_VBMI inline void Scales1024(const Lut1024& lut, __m512i index_low, __m
     scale_high = _mm512_sll_epi16(_mm512_unpackhi_epi8(scale, zero), up_shift);
 }
 
-// Twin of blend_luma_row at 10 bits; `rest(x, seams)` blends samples [x, width) the generic
-// way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
-// byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
 // Whether a sample of the OR of a step's samples lies above 10 bits (bad input): the 16-bit
 // arithmetic here holds the spec's integers only below 2^14, so such a step writes nothing and
 // sets `skipped`, for the caller to blend it the scalar way (its samples still there, in place
@@ -64,6 +61,9 @@ FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scal
     _mm512_storeu_si512(dst, _mm512_min_epi16(_mm512_max_epi16(v, vmin), vmax));
 }
 
+// Twin of blend_luma_row at 10 bits; `rest(x, seams)` blends samples [x, width) the generic
+// way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
+// byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
 // `skipped`: a step holding a sample above 10 bits was left out (AnyAbove10Bits).
 template <Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
