@@ -328,16 +328,18 @@ void BlendChromaScalar(const Pixel* src, Pixel* dst, const Pixel* luma, int luma
 // and leave steps or rows holding one to the scalar forms here, whose int arithmetic is the
 // reference's for any 16-bit sample.
 
-// Samples [x, end) of a luma row one by one, and with co_sited its co-sited averages of the
-// whole pairs in [x, end) (x even), made first: in place, the blend overwrites the samples.
-inline void BlendLumaScalar(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int x, int end, int width,
-                            const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
-                            uint16_t* co_sited) {
+// Samples [x, end) of a luma row one by one (the vector loops' tails, and the steps and rows
+// above the bit depth), and with co_sited its co-sited averages of the whole pairs in
+// [x, end) (x even), made first: in place, the blend overwrites the samples.
+template <typename Pixel>
+void BlendLumaScalar(const Pixel* src, Pixel* dst, const BlockNoiseRow& noise, int x, int end, int width,
+                     const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                     Pixel* co_sited = nullptr) {
     if (co_sited)
-        for (int c = x / 2; c < (end + 1) / 2; ++c) co_sited[c] = static_cast<uint16_t>(co_sited_luma(src, width, c));
+        for (int c = x / 2; c < (end + 1) / 2; ++c) co_sited[c] = static_cast<Pixel>(co_sited_luma(src, width, c));
     for (; x < end; ++x) {
         const int v = src[x] + round2_signed(scaling(src[x]) * noise.at(x), scaling_shift);
-        dst[x] = static_cast<uint16_t>(v < min_value ? min_value : v > max_value ? max_value : v);
+        dst[x] = static_cast<Pixel>(v < min_value ? min_value : v > max_value ? max_value : v);
     }
 }
 
@@ -350,19 +352,6 @@ inline void BlendChromaLookedUp(const uint16_t* src, uint16_t* dst, const uint16
         src, dst, luma, luma_width, noise, x, end, subsampling_x, index,
         [&](int merged, int nz) { return round2_signed(scaling(merged) * nz, scaling_shift); }, bit_depth, min_value,
         max_value);
-}
-
-// After a 10-bit form that left out the steps holding a sample above the bit depth (their
-// output not written, so that in place their samples are still there): its steps before
-// `end`, where its tail began (64 samples each, the last one 32 where the AVX2 form took 32),
-// where bad(x, n), the scalar way, scalar(x, n). A step it blended holds samples within the
-// bit depth (out of place) or its output (in place) by now, so it does not count as bad.
-template <class Bad, class Scalar>
-void BlendSkippedSteps(int end, Bad&& bad, Scalar&& scalar) {
-    for (int x = 0; x < end; x += 64) {
-        const int n = std::min(64, end - x);
-        if (bad(x, n)) scalar(x, n);
-    }
 }
 
 // Whether any of n samples lies above the bit depth.
@@ -409,9 +398,16 @@ struct SkippedSteps {
         else
             generic();
     }
-    // After the form: the steps it left out.
+    // After the form, the steps it left out: its steps before where its tail began (64
+    // samples each, the last one 32 where the AVX2 form took 32) that hold a sample above the
+    // bit depth. A step it blended holds samples within the bit depth (out of place) or its
+    // output (in place) by now, so it does not count.
     void Finish() {
-        if (skipped) BlendSkippedSteps(vector_end, bad, scalar);
+        if (!skipped) return;
+        for (int x = 0; x < vector_end; x += 64) {
+            const int n = std::min(64, vector_end - x);
+            if (bad(x, n)) scalar(x, n);
+        }
     }
 };
 template <class Bad, class Scalar>
@@ -855,10 +851,7 @@ void BlendLumaRowU8Generic(const uint8_t* src, uint8_t* dst, const BlockNoiseRow
         LookUpScaling8(src + x, scale, chunk, rows);
         AddBlockNoise(src, dst, noise, x, chunk, ByteScalesQ15(scale, 15 - scaling_shift), min_value, max_value);
     }
-    for (int x = vec_end; x < width; ++x) {
-        const int v = src[x] + round2_signed(scaling(src[x]) * noise.at(x), scaling_shift);
-        dst[x] = static_cast<uint8_t>(v < min_value ? min_value : v > max_value ? max_value : v);
-    }
+    BlendLumaScalar(src, dst, noise, vec_end, width, width, scaling, scaling_shift, min_value, max_value);
 }
 
 // Above 8 bits the 16-bit lanes hold the samples themselves. Samples [x_begin, width), as
@@ -874,10 +867,7 @@ void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoise
         scales.LookUp(src + x, chunk);
         AddBlockNoise(src, dst, noise, x, chunk, [&](int k) { return scales.At(k); }, min_value, max_value);
     }
-    for (int x = vec_end; x < width; ++x) {
-        const int v = src[x] + round2_signed(scales.Scalar(src[x]) * noise.at(x), scaling_shift);
-        dst[x] = static_cast<uint16_t>(v < min_value ? min_value : v > max_value ? max_value : v);
-    }
+    BlendLumaScalar(src, dst, noise, vec_end, width, width, scaling, scaling_shift, min_value, max_value);
 }
 
 #if HWY_TARGET == HWY_AVX3
@@ -934,8 +924,10 @@ void CoSitedLumaRowU16Unchecked(const uint16_t* luma, int luma_width, int width,
 // scalar way. (The output is scratch, never the luma: checked after.)
 void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t* out) {
     CoSitedLumaRowU16Unchecked(luma, luma_width, width, out);
+#if HWY_TARGET == HWY_AVX2  // (the other targets' rounding average is exact for any sample)
     if (AnyAboveBitDepth(luma, std::min(luma_width, 2 * width), 14))
         for (int x = 0; x < width; ++x) out[x] = static_cast<uint16_t>(co_sited_luma(luma, luma_width, x));
+#endif
 }
 
 #if HWY_TARGET == HWY_AVX2
