@@ -338,15 +338,11 @@ void GatherBlockBandsI8(const int8_t* const* blocks, std::ptrdiff_t offset, int 
             const int8_t *p0 = blocks[j] + offset, *p1 = blocks[j + 1] + offset, *p2 = blocks[j + 2] + offset,
                          *p3 = blocks[j + 3] + offset;
             int8_t* o = out + j * 8;
-            // each pair's second block loaded straight into the high half (vmovhpd): one
-            // instruction fewer per pair than two loads and an unpack
-            auto pair = [](const int8_t* a, const int8_t* b) {
-                const __m128d low = _mm_castsi128_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a)));
-                return _mm_castpd_si128(_mm_loadh_pd(low, reinterpret_cast<const double*>(b)));
-            };
-            for (int r = 0; r < rows; r++, p0 += pitch, p1 += pitch, p2 += pitch, p3 += pitch, o += out_stride)
-                hn::StoreU(hn::Vec256<int8_t>{_mm256_inserti128_si256(_mm256_castsi128_si256(pair(p0, p1)), pair(p2, p3), 1)},
-                           d32, o);
+            for (int r = 0; r < rows; r++, p0 += pitch, p1 += pitch, p2 += pitch, p3 += pitch, o += out_stride) {
+                const auto lo = hn::Combine(d16, hn::LoadU(d8, p1), hn::LoadU(d8, p0));
+                const auto hi = hn::Combine(d16, hn::LoadU(d8, p3), hn::LoadU(d8, p2));
+                hn::StoreU(hn::Combine(d32, hi, lo), d32, o);
+            }
         }
 #endif
         for (; j + 2 <= count; j += 2) {
