@@ -1,6 +1,7 @@
 // Per-frame synthesis time of both models (Google Benchmark): 1280x720, 1920x1080 and
 // 3840x2160, 8- and 10-bit 4:2:0, 1 and 2 threads, scalar reference vs optimized kernels,
-// and one frame copy of each size (the bound synthesis is compared with). Contexts are
+// one frame copy of each size (the bound synthesis is compared with), and two threads over
+// one timed in paired frames (BM_ThreadScaling). Contexts are
 // created once and reused, as a decoder would, so the numbers are the steady state
 // (templates built, buffers grown). Not part of the test suite; tools/bench-compare runs it.
 //
@@ -8,7 +9,10 @@
 //   FILMGRAIN_SIMD_TARGET=SSE4 build/filmgrain_bench   # force a vector target
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <vector>
 
 #include "bench_main.hpp"
 #include "bench_params.hpp"
@@ -107,6 +111,64 @@ void BM_FrameCopy(benchmark::State& state) {
     }
 }
 
+// args: model (0 FGC rdd5, 1 FGC vfgs, 2 AV1), width, height, bit depth. Two-thread over
+// one-thread throughput measured in pairs: each iteration runs a few frames on a one-thread
+// session and as many on a two-thread session right after (the order alternating), and the
+// ratio of the two elapsed times is one sample. On a shared machine whose speed changes over
+// seconds, BM_Fgc's 1- and 2-thread repetitions fall in different states (their ratio moved
+// from 1.35 to 2.5 across minutes on a Zen 3); frames a millisecond apart see the same one.
+// The first frame of each side is not timed: it wakes the side's pool, idle while the other
+// side ran, as in the back-to-back frames the other benchmarks time.
+void BM_ThreadScaling(benchmark::State& state) {
+    const int model = int(state.range(0));
+    const int w = int(state.range(1)), h = int(state.range(2)), bd = int(state.range(3));
+    struct Side {
+        Session session;
+        Av1FilmGrainParams av1;
+        FrameInfo info;
+    };
+    auto make = [&](int threads) {
+        SessionOptions o;
+        o.flavour = model == 1 ? FgcFlavour::kVfgs : FgcFlavour::kRdd5;
+        o.threads = threads;
+        Side side{Session(o), bench::av1_params(), FrameInfo{}};
+        if (model != 2) side.session.receive_fgc_params(fgc_params(model == 1 ? 8 : bd), FgcCodec::kHevc);
+        return side;
+    };
+    Side sides[2] = {make(1), make(2)};
+    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
+    auto frame = [&](Side& side) {
+        if (model == 2) {
+            side.av1.grain_seed = (side.av1.grain_seed + 7391) & 0xFFFF;
+            side.session.receive_av1_params(side.av1, 0, 1);
+            side.session.apply(in.view(), out.view());
+        } else {
+            side.info.ids.poc = (side.info.ids.poc + 1) & 255;
+            side.session.apply(in.view(), out.view(), &side.info);
+        }
+        benchmark::DoNotOptimize(out.bytes());
+    };
+    for (Side& side : sides) frame(side);
+    constexpr int kTimedFrames = 4;
+    std::vector<double> ratios;
+    for (auto _ : state) {
+        double seconds[2] = {};
+        for (int k = 0; k < 2; ++k) {
+            const int threads_index = k ^ int(ratios.size() % 2);
+            frame(sides[threads_index]);
+            const auto t0 = std::chrono::steady_clock::now();
+            for (int f = 0; f < kTimedFrames; ++f) frame(sides[threads_index]);
+            seconds[threads_index] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        }
+        ratios.push_back(seconds[0] / seconds[1]);
+        state.SetIterationTime(seconds[0] + seconds[1]);
+    }
+    std::sort(ratios.begin(), ratios.end());
+    state.counters["speedup"] = ratios[ratios.size() / 2];
+    state.counters["speedup_q1"] = ratios[ratios.size() / 4];
+    state.counters["speedup_q3"] = ratios[ratios.size() * 3 / 4];
+}
+
 void sizes(benchmark::internal::Benchmark* b, bool flavours) {
     const int dims[3][2] = {{1280, 720}, {1920, 1080}, {3840, 2160}};
     for (auto& d : dims)
@@ -127,6 +189,11 @@ void sizes(benchmark::internal::Benchmark* b, bool flavours) {
 BENCHMARK(BM_Fgc)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, true); });
 BENCHMARK(BM_Av1)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, false); });
 BENCHMARK(BM_Vfgs)->Apply([](benchmark::internal::Benchmark* b) { sizes(b, false); });
+BENCHMARK(BM_ThreadScaling)
+    ->ArgsProduct({{0, 1, 2}, {1920}, {1080}, {8, 10}})
+    ->ArgNames({"model", "w", "h", "bd"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
 BENCHMARK(BM_FrameCopy)
     ->ArgsProduct({{1280}, {720}, {8, 10}})
     ->ArgsProduct({{1920}, {1080}, {8, 10}})
