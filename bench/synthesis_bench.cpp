@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "bench_main.hpp"
@@ -46,54 +47,62 @@ FgcParams fgc_params(int bd) {
 
 // Every benchmark drives the stream session, as every entry point does (the C API, the tool,
 // GStreamer, Python): what a decoder pays per picture, session checks included. The parameter
-// set arrives once and persists (FGC) or changes its seed every frame (AV1), as in streams;
-// the first picture's set-up (templates, vfgs tables and stripe states) is outside the timing.
-Session make_session(FgcFlavour flavour, const benchmark::State& state) {
-    SessionOptions o;
-    o.flavour = flavour;
-    o.threads = int(state.range(3));
-    o.reference_kernels = state.range(4) == 0;
-    return Session(o);
-}
-
-void run_fgc(benchmark::State& state, FgcFlavour flavour, const FgcParams& params) {
-    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    Session s = make_session(flavour, state);
-    s.receive_fgc_params(params, FgcCodec::kHevc);
-    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
-    FrameInfo info;
-    s.apply(in.view(), out.view(), &info);
-    for (auto _ : state) {
-        info.ids.poc = (info.ids.poc + 1) & 255;
-        s.apply(in.view(), out.view(), &info);
+// set arrives once and persists (FGC: the picture order count advances) or arrives with every
+// picture and a new seed (AV1), as in streams.
+class BenchStream {
+public:
+    BenchStream(FgcFlavour flavour, int threads, bool reference_kernels, const std::optional<FgcParams>& fgc)
+        : session_(options(flavour, threads, reference_kernels)), av1_(bench::av1_params()), fgc_(fgc.has_value()) {
+        if (fgc) session_.receive_fgc_params(*fgc, FgcCodec::kHevc);
+    }
+    void frame(FrameBuffer& in, FrameBuffer& out) {
+        if (fgc_) {
+            info_.ids.poc = (info_.ids.poc + 1) & 255;
+            session_.apply(in.view(), out.view(), &info_);
+        } else {
+            av1_.grain_seed = (av1_.grain_seed + 7391) & 0xFFFF;  // encoders change the seed every frame
+            session_.receive_av1_params(av1_, 0, 1);
+            session_.apply(in.view(), out.view());
+        }
         benchmark::DoNotOptimize(out.bytes());
     }
+
+private:
+    static SessionOptions options(FgcFlavour flavour, int threads, bool reference_kernels) {
+        SessionOptions o;
+        o.flavour = flavour;
+        o.threads = threads;
+        o.reference_kernels = reference_kernels;
+        return o;
+    }
+    Session session_;
+    Av1FilmGrainParams av1_;
+    FrameInfo info_;
+    bool fgc_;
+};
+
+// args: width, height, bit depth, threads, optimized (0/1). The first picture's set-up
+// (templates, vfgs tables and stripe states) is outside the timing for FGC.
+void run_stream(benchmark::State& state, FgcFlavour flavour, const std::optional<FgcParams>& fgc) {
+    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
+    BenchStream stream(flavour, int(state.range(3)), state.range(4) == 0, fgc);
+    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
+    if (fgc) stream.frame(in, out);
+    for (auto _ : state) stream.frame(in, out);
     state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 // args: width, height, bit depth, threads, optimized (0/1), flavour (0 rdd5, 1 vtm)
 void BM_Fgc(benchmark::State& state) {
-    run_fgc(state, state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5, fgc_params(int(state.range(2))));
+    run_stream(state, state.range(5) ? FgcFlavour::kVtm : FgcFlavour::kRdd5, fgc_params(int(state.range(2))));
 }
 
 // args: width, height, bit depth, threads, optimized (0/1). The vfgs flavour (VFGS-exact).
 // VFGS's scale is 8 bits at every bit depth, so the 8-bit parameter set serves both.
-void BM_Vfgs(benchmark::State& state) { run_fgc(state, FgcFlavour::kVfgs, fgc_params(8)); }
+void BM_Vfgs(benchmark::State& state) { run_stream(state, FgcFlavour::kVfgs, fgc_params(8)); }
 
 // args: width, height, bit depth, threads, optimized (0/1)
-void BM_Av1(benchmark::State& state) {
-    const int w = int(state.range(0)), h = int(state.range(1)), bd = int(state.range(2));
-    Session s = make_session(FgcFlavour::kRdd5, state);
-    Av1FilmGrainParams p = bench::av1_params();
-    FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
-    for (auto _ : state) {
-        p.grain_seed = (p.grain_seed + 7391) & 0xFFFF;  // encoders change the seed every frame
-        s.receive_av1_params(p, 0, 1);
-        s.apply(in.view(), out.view());
-        benchmark::DoNotOptimize(out.bytes());
-    }
-    state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
-}
+void BM_Av1(benchmark::State& state) { run_stream(state, FgcFlavour::kRdd5, std::nullopt); }
 
 // args: width, height, bit depth. Copying every row of every plane once: what a decoder
 // that hands out a separate output frame pays at least, grain or not.
@@ -111,54 +120,34 @@ void BM_FrameCopy(benchmark::State& state) {
     }
 }
 
-// args: model (0 FGC rdd5, 1 FGC vfgs, 2 AV1), width, height, bit depth. Two-thread over
-// one-thread throughput measured in pairs: each iteration runs a few frames on a one-thread
-// session and as many on a two-thread session right after (the order alternating), and the
-// ratio of the two elapsed times is one sample. On a shared machine whose speed changes over
-// seconds, BM_Fgc's 1- and 2-thread repetitions fall in different states (their ratio moved
-// from 1.35 to 2.5 across minutes on a Zen 3); frames a millisecond apart see the same one.
-// The first frame of each side is not timed: it wakes the side's pool, idle while the other
-// side ran, as in the back-to-back frames the other benchmarks time.
+// args: model (0 FGC rdd5, 1 FGC vfgs, 2 AV1), width, height, bit depth.
+// Two-thread over one-thread throughput measured in pairs: each iteration runs a few frames
+// on a one-thread session and as many on a two-thread session right after (the order
+// alternating), and the ratio of the two elapsed times is one sample. On a shared machine
+// whose speed changes over seconds, BM_Fgc's 1- and 2-thread repetitions fall in different
+// states (their ratio moved from 1.35 to 2.5 within a minute on a Zen 3); frames a
+// millisecond apart see the same one. The first frame of each side is not timed: it wakes
+// the side's pool, idle while the other side ran, as in the back-to-back frames the other
+// benchmarks time.
 void BM_ThreadScaling(benchmark::State& state) {
     const int model = int(state.range(0));
     const int w = int(state.range(1)), h = int(state.range(2)), bd = int(state.range(3));
-    struct Side {
-        Session session;
-        Av1FilmGrainParams av1;
-        FrameInfo info;
-    };
-    auto make = [&](int threads) {
-        SessionOptions o;
-        o.flavour = model == 1 ? FgcFlavour::kVfgs : FgcFlavour::kRdd5;
-        o.threads = threads;
-        Side side{Session(o), bench::av1_params(), FrameInfo{}};
-        if (model != 2) side.session.receive_fgc_params(fgc_params(model == 1 ? 8 : bd), FgcCodec::kHevc);
-        return side;
-    };
-    Side sides[2] = {make(1), make(2)};
+    const FgcFlavour flavour = model == 1 ? FgcFlavour::kVfgs : FgcFlavour::kRdd5;
+    const std::optional<FgcParams> fgc =
+        model == 2 ? std::nullopt : std::optional<FgcParams>(fgc_params(model == 1 ? 8 : bd));
+    BenchStream streams[2] = {BenchStream(flavour, 1, false, fgc), BenchStream(flavour, 2, false, fgc)};
     FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
-    auto frame = [&](Side& side) {
-        if (model == 2) {
-            side.av1.grain_seed = (side.av1.grain_seed + 7391) & 0xFFFF;
-            side.session.receive_av1_params(side.av1, 0, 1);
-            side.session.apply(in.view(), out.view());
-        } else {
-            side.info.ids.poc = (side.info.ids.poc + 1) & 255;
-            side.session.apply(in.view(), out.view(), &side.info);
-        }
-        benchmark::DoNotOptimize(out.bytes());
-    };
-    for (Side& side : sides) frame(side);
+    for (BenchStream& stream : streams) stream.frame(in, out);
     constexpr int kTimedFrames = 4;
     std::vector<double> ratios;
     for (auto _ : state) {
         double seconds[2] = {};
         for (int k = 0; k < 2; ++k) {
-            const int threads_index = k ^ int(ratios.size() % 2);
-            frame(sides[threads_index]);
+            const int side = k ^ int(ratios.size() % 2);  // 0: one thread, 1: two
+            streams[side].frame(in, out);
             const auto t0 = std::chrono::steady_clock::now();
-            for (int f = 0; f < kTimedFrames; ++f) frame(sides[threads_index]);
-            seconds[threads_index] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            for (int f = 0; f < kTimedFrames; ++f) streams[side].frame(in, out);
+            seconds[side] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         ratios.push_back(seconds[0] / seconds[1]);
         state.SetIterationTime(seconds[0] + seconds[1]);
