@@ -12,7 +12,6 @@ namespace {
 // The field name is built only for the message: validation runs for every frame, and a
 // valid frame must not allocate (steady-state synthesis is allocation-free).
 inline std::string field_name(const char* name) { return name; }
-inline std::string field_name(const std::string& name) { return name; }
 template <typename F, typename = decltype(std::declval<F>()())>
 std::string field_name(const F& make) {
     return make();
