@@ -38,29 +38,37 @@ Av1FilmGrainParams av1_fields(const uint8_t* data, std::size_t size) {
         const int v = next();
         return v >= 240 ? v - 240 + range : v % range;
     };
+    auto fill = [&](auto& values) {
+        for (auto& v : values) v = next();
+    };
+    // a scaling function: its point count (0..most, or beyond), values and scalings
+    auto points = [&](int& count, int most, auto& values, auto& scalings) {
+        count = small(most + 1);
+        fill(values);
+        fill(scalings);
+    };
     Av1FilmGrainParams p;
     p.apply_grain = small(2);
-    p.grain_seed = next() | next() << 8;
+    p.grain_seed = next();
+    p.grain_seed |= next() << 8;  // (two statements: the operands of | are unsequenced)
     p.update_grain = 1;
-    p.num_y_points = small(15);
-    for (auto& v : p.point_y_value) v = next();
-    for (auto& v : p.point_y_scaling) v = next();
+    points(p.num_y_points, 14, p.point_y_value, p.point_y_scaling);
     p.chroma_scaling_from_luma = small(2);
-    p.num_cb_points = small(11);
-    for (auto& v : p.point_cb_value) v = next();
-    for (auto& v : p.point_cb_scaling) v = next();
-    p.num_cr_points = small(11);
-    for (auto& v : p.point_cr_value) v = next();
-    for (auto& v : p.point_cr_scaling) v = next();
+    points(p.num_cb_points, 10, p.point_cb_value, p.point_cb_scaling);
+    points(p.num_cr_points, 10, p.point_cr_value, p.point_cr_scaling);
     p.grain_scaling_minus_8 = small(4);
     p.ar_coeff_lag = small(4);
-    for (auto& v : p.ar_coeffs_y_plus_128) v = next();
-    for (auto& v : p.ar_coeffs_cb_plus_128) v = next();
-    for (auto& v : p.ar_coeffs_cr_plus_128) v = next();
+    fill(p.ar_coeffs_y_plus_128);
+    fill(p.ar_coeffs_cb_plus_128);
+    fill(p.ar_coeffs_cr_plus_128);
     p.ar_coeff_shift_minus_6 = small(4);
     p.grain_scale_shift = small(4);
-    p.cb_mult = next(), p.cb_luma_mult = next(), p.cb_offset = next() | (next() & 1) << 8;
-    p.cr_mult = next(), p.cr_luma_mult = next(), p.cr_offset = next() | (next() & 1) << 8;
+    auto offset = [&] {  // 9 bits
+        const int low = next();
+        return low | (next() & 1) << 8;
+    };
+    p.cb_mult = next(), p.cb_luma_mult = next(), p.cb_offset = offset();
+    p.cr_mult = next(), p.cr_luma_mult = next(), p.cr_offset = offset();
     p.overlap_flag = small(2);
     p.clip_to_restricted_range = small(2);
     p.chroma_point_counts_signalled = next() & 1;
