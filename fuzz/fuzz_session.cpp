@@ -4,7 +4,8 @@
 // few pictures of any small size, chroma format and bit depth, in place or not, on one or
 // two threads. The parsers have their own harnesses; this one is for the synthesis behind
 // them: whatever a set that passes validation holds and whatever the picture, only
-// filmgrain::Error may come out, and a picture the session refuses is left as it was.
+// filmgrain::Error may come out, a picture the session refuses (throwing) or leaves without
+// grain is as it was, and the source of an out-of-place synthesis is never written.
 //
 // Input: byte 0 the metadata kind (bits 0-1: 0 and 3 FGC SEI, 1 AV1 fields, 2 AFGS1), the
 // FGC codec (bits 2-3, modulo 3), the flavour (bits 4-6, modulo 5), two threads (bit 7);
@@ -127,8 +128,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             try {
                 result = session.apply(in, out);
             } catch (const Error&) {
-                // nothing half-written where the session threw before synthesis: an
-                // in-place picture it refused is unchanged
+                // refused before synthesis: no picture half-written, in place or not
+                if (std::memcmp(src.bytes(), before.data(), before.size()) != 0) std::abort();
                 continue;
             }
             // a picture without grain is the source as it was (copied when out of place)
