@@ -12,7 +12,8 @@
 // byte 1 the chroma format (bits 0-1), the bit depth (bits 2-4: 8, 9, 10, 12, 16, 8, 10, 12),
 // in place (bit 5), samples above the bit depth (bit 6), invalid sets passed through
 // (bit 7); byte 2 the width - 1 (0..127), byte 3 the height - 1 (0..95), byte 4 the
-// pictures (1..4, bits 0-1) and the samples' seed; the rest the metadata.
+// pictures (1..4, bits 0-1) and the samples' seed; the rest the metadata (AV1 fields: its
+// last byte is also the matrix_coefficients the set arrives with).
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
