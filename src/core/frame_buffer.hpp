@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cache_line.hpp"
 #include "filmgrain/frame.hpp"
 
 namespace filmgrain {
@@ -34,7 +35,7 @@ void check_picture_size(int width, int height);
 // A picture's first row starts on a cache line: malloc gives 16 mod 64 for the sizes it
 // maps (any picture from 256 KiB up), where every 64-byte store of a vector kernel
 // straddles two lines.
-inline constexpr std::size_t kFrameAlignment = 64;
+inline constexpr std::size_t kFrameAlignment = kCacheLineBytes;
 
 // A std::allocator whose value-less construct() leaves bytes uninitialized, so that a vector
 // resized for data about to be read is not zero-filled first (its pages stay untouched until

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "core/cache_line.hpp"
 #include "fgc/block_randomization.hpp"
 #include "fgc/fgc_picture_synthesis.hpp"
 #include "fgc/local_adaptation.hpp"
@@ -24,7 +25,7 @@ namespace filmgrain::fgc {
 // picture's right or bottom edge take their averages from the reference functions.
 // Blocks without grain point here: zeros for any block row at either pitch.
 template <typename Table>
-alignas(64) constexpr Table kZeroGrain[kTemplateSize * 32] = {};
+alignas(kCacheLineBytes) constexpr Table kZeroGrain[kTemplateSize * 32] = {};
 
 template <typename Pixel, int kBlock, typename Table>
 void FgcPictureSynthesis::optimized_stripe(const ResolvedFgc& params, int c, const PlaneView& src,

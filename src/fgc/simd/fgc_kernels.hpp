@@ -9,6 +9,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/cache_line.hpp"
+
 namespace filmgrain::fgc::simd {
 
 // The same row of the next stripe in the picture read (`src`) and in the one written
@@ -17,7 +19,10 @@ namespace filmgrain::fgc::simd {
 // picture written one frame ago has left the caches by the next frame, and every store
 // waits for its line to come back for ownership; in `filmgrain decode` of a 1080p 8-bit
 // HEVC stream the 8-bit kernels (8x8 deblock and blend, block tables) took 0.43-0.47 ms per
-// frame with the source prefetch alone and 0.29 with both (perf samples, 4 runs each).
+// frame with the source prefetch alone and 0.29 with both (perf samples, 4 runs each, on the
+// AVX-512 machine). On a Zen 3 (AVX2), timed frame by frame alternating with each variant,
+// only the source's prefetch paid (no prefetch 1.07-1.27 ms, source alone as much as both,
+// 0.85-0.97); the output's is kept since it costs nothing there (docs/performance-notes.md).
 template <typename Pixel>
 struct NextStripeRow {
     const Pixel* src = nullptr;
@@ -69,7 +74,7 @@ void deblock_blend_row_u16_i8(const uint16_t* src, uint16_t* dst, const int8_t* 
 // 1) / block), width + 2) bytes rounded up to 64, so that the gather's stores never split a
 // cache line (a band starting one byte in split every other 32-byte store: on a Zen 3 the
 // gather was 30 % of the 1080p 8-bit frame).
-constexpr std::size_t kBlockRowsBandAlign = 64;
+constexpr std::size_t kBlockRowsBandAlign = kCacheLineBytes;
 constexpr std::size_t deblock_blend_block_rows_band_stride(int width, int grain_end, int block) {
     const int end = grain_end < width + 1 ? grain_end : width + 1;
     const int gathered = (end + block - 1) / block * block;
