@@ -132,16 +132,22 @@ void BM_FrameCopy(benchmark::State& state) {
 // the side's pool, idle while the other side ran, as in the back-to-back frames the other
 // benchmarks time.
 void BM_ThreadScaling(benchmark::State& state) {
-    static constexpr const char* kModelNames[] = {"FGC rdd5", "FGC vfgs", "AV1", "FGC vtm"};
-    static constexpr FgcFlavour kFlavours[] = {FgcFlavour::kRdd5, FgcFlavour::kVfgs, FgcFlavour::kRdd5,
-                                               FgcFlavour::kVtm};
-    const int model = int(state.range(0));
-    state.SetLabel(kModelNames[model]);
+    // vfgs scales in 8 bits at every bit depth (as BM_Vfgs); AV1 takes no FGC set
+    struct Model {
+        const char* name;
+        FgcFlavour flavour;
+        bool fgc, fgc_params_8bit;
+    };
+    static constexpr Model kModels[] = {{"FGC rdd5", FgcFlavour::kRdd5, true, false},
+                                        {"FGC vfgs", FgcFlavour::kVfgs, true, true},
+                                        {"AV1", FgcFlavour::kRdd5, false, false},
+                                        {"FGC vtm", FgcFlavour::kVtm, true, false}};
+    const Model& model = kModels[state.range(0)];
+    state.SetLabel(model.name);
     const int w = int(state.range(1)), h = int(state.range(2)), bd = int(state.range(3));
-    const FgcFlavour flavour = kFlavours[model];
     const std::optional<FgcParams> fgc =
-        model == 2 ? std::nullopt : std::optional<FgcParams>(fgc_params(model == 1 ? 8 : bd));
-    BenchStream streams[2] = {BenchStream(flavour, 1, false, fgc), BenchStream(flavour, 2, false, fgc)};
+        model.fgc ? std::optional<FgcParams>(fgc_params(model.fgc_params_8bit ? 8 : bd)) : std::nullopt;
+    BenchStream streams[2] = {BenchStream(model.flavour, 1, false, fgc), BenchStream(model.flavour, 2, false, fgc)};
     FrameBuffer in = bench::test_picture(w, h, bd), out(w, h, in.format());
     for (BenchStream& stream : streams) stream.frame(in, out);
     constexpr int kTimedFrames = 4;
