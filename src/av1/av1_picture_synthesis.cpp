@@ -25,6 +25,12 @@ void copy_rows_without_grain(const PlaneView& s, const PlaneView& d, int y0, int
     for (int y = y0; y < y0 + rows; ++y)
         std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(width));
 }
+
+// The source row `rows` below y for the kernels to prefetch (simd::kSourcePrefetchRows), or
+// null past the plane's last row (`plane_rows`: a view's own height may be left 0).
+const uint16_t* source_ahead(const PlaneView& s, int y, int rows, int plane_rows) {
+    return y + rows < plane_rows ? s.row<const uint16_t>(y + rows) : nullptr;
+}
 }  // namespace
 
 
@@ -296,7 +302,8 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                         simd::blend_luma_row_u16(
                             s.row<Pixel>(y), d.row<Pixel>(y), r, width_, scaling_[0], scaling_shift, bit_depth_,
                             clip_.min_value, clip_.max_luma,
-                            co_sited_row ? co_sited + std::ptrdiff_t(i >> suby_) * chroma_width : nullptr);
+                            co_sited_row ? co_sited + std::ptrdiff_t(i >> suby_) * chroma_width : nullptr,
+                            source_ahead(s, y, simd::kSourcePrefetchRows, height_));
                     }
                 }
             });
@@ -323,7 +330,9 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                     const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
                     simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, r, pw, sx,
                                                chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
-                                               clip_.min_value, clip_.max_chroma);
+                                               clip_.min_value, clip_.max_chroma,
+                                               source_ahead(s, y, simd::kSourcePrefetchRows >> suby_,
+                                                            plane_height(format_, pl, height_)));
                 }
             }
         });

@@ -86,9 +86,12 @@ void blend_luma(const uint8_t* s, uint8_t* d, const av1::simd::BlockNoiseRow& n,
                 int shift, int, const av1::ClipLimits& c) {
     av1::simd::blend_luma_row_u8(s, d, n, w, sc, shift, c.min_value, c.max_luma);
 }
+// The u16 forms with a row to prefetch (`ahead`, here the source itself) on even widths and
+// none on odd ones: a hint the output must not depend on.
+const uint16_t* prefetch_row(const uint16_t* s, int w) { return w & 1 ? nullptr : s; }
 void blend_luma(const uint16_t* s, uint16_t* d, const av1::simd::BlockNoiseRow& n, int w,
                 const av1::ScalingLookup& sc, int shift, int bd, const av1::ClipLimits& c) {
-    av1::simd::blend_luma_row_u16(s, d, n, w, sc, shift, bd, c.min_value, c.max_luma);
+    av1::simd::blend_luma_row_u16(s, d, n, w, sc, shift, bd, c.min_value, c.max_luma, nullptr, prefetch_row(s, w));
 }
 void blend_chroma(const uint8_t* s, uint8_t* d, const uint8_t* l, int lw, const av1::simd::BlockNoiseRow& n, int w,
                   int subx, const av1::ChromaScalingIndex& i, const av1::ScalingLookup& sc, int shift, int bd,
@@ -98,7 +101,8 @@ void blend_chroma(const uint8_t* s, uint8_t* d, const uint8_t* l, int lw, const 
 void blend_chroma(const uint16_t* s, uint16_t* d, const uint16_t* l, int lw, const av1::simd::BlockNoiseRow& n,
                   int w, int subx, const av1::ChromaScalingIndex& i, const av1::ScalingLookup& sc, int shift, int bd,
                   const av1::ClipLimits& c) {
-    av1::simd::blend_chroma_row_u16(s, d, l, lw, n, w, subx, i, sc, shift, bd, c.min_value, c.max_chroma);
+    av1::simd::blend_chroma_row_u16(s, d, l, lw, n, w, subx, i, sc, shift, bd, c.min_value, c.max_chroma,
+                                    prefetch_row(s, w));
 }
 
 template <typename Pixel>

@@ -66,9 +66,13 @@ void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& no
 // co_sited_luma_row_u16 of the clean row, (width + 1) / 2 samples, into it: the luma kernel
 // has the samples in registers when it loads them to blend (where dst is src, before it
 // overwrites them).
+// `ahead` (the u16 forms, may be null): a source row further down the plane, at least `width`
+// samples, which the 10-bit AVX2 kernels prefetch as they go (kSourcePrefetchRows). A hint
+// only: the output does not depend on it.
+inline constexpr int kSourcePrefetchRows = 16;  // luma rows ahead; chroma: >> subsampling_y
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
-                        uint16_t* co_sited = nullptr);
+                        uint16_t* co_sited = nullptr, const uint16_t* ahead = nullptr);
 
 // blend_luma_row_u8 of each of rows.count rows, one call for all (the row loop inside the
 // target's kernel, its constants made once).
@@ -81,7 +85,8 @@ void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, 
                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value);
+                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                          const uint16_t* ahead = nullptr);
 
 // blend_chroma_row_u8 of each of rows.count rows, one call for all.
 void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,

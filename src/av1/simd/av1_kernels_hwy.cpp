@@ -935,7 +935,7 @@ void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t
 // last whole 32 the generic way.
 void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                          const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
-                         uint16_t* co_sited) {
+                         uint16_t* co_sited, const uint16_t* ahead) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
     auto steps = LumaSkippedSteps(src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited);
     auto rest = [&](int x) {
@@ -947,7 +947,8 @@ void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow
     avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
         avx2::WithFlag(co_sited != nullptr, [&](auto with_co_sited) FG_INLINE_LAMBDA {
             avx2::Luma10Row<decltype(overlap)::value, decltype(with_co_sited)::value>(
-                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, steps.skipped, rest);
+                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, ahead, steps.skipped,
+                rest);
         });
     });
     steps.Finish();
@@ -958,10 +959,11 @@ void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow
 // (CheckedRow), which is made again the scalar way where it holds a sample above the bit depth.
 void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                      const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
-                     uint16_t* co_sited) {
+                     uint16_t* co_sited, [[maybe_unused]] const uint16_t* ahead) {
 #if HWY_TARGET == HWY_AVX2
     if (bit_depth == 10 && noise.block_width == 32)
-        return BlendLumaRowU10Avx2(src, dst, noise, width, scaling, scaling_shift, min_value, max_value, co_sited);
+        return BlendLumaRowU10Avx2(src, dst, noise, width, scaling, scaling_shift, min_value, max_value, co_sited,
+                                   ahead);
 #endif
 #if HWY_TARGET == HWY_AVX3
     if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi()) {
@@ -1202,7 +1204,8 @@ FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, 
 // (blend_10bit_avx2-inl.h); the samples after the last whole 32 the generic way.
 void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                            const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
-                           const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
+                           const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                           const uint16_t* ahead) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
     auto steps = ChromaSkippedSteps(src, dst, luma, luma_width, row, width, index, scaling, scaling_shift, min_value,
                                     max_value);
@@ -1217,7 +1220,7 @@ void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* l
             avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
                 avx2::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
                                   decltype(overlap)::value>(src, dst, luma, row, width, index, scaling, scaling_shift,
-                                                            min_value, max_value, steps.skipped, rest);
+                                                            min_value, max_value, ahead, steps.skipped, rest);
             });
         });
     });
@@ -1228,7 +1231,8 @@ void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* l
 // As BlendLumaRowU16: the 10-bit forms check their steps, the generic ones the row.
 void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                        const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                       [[maybe_unused]] const uint16_t* ahead) {
 #if HWY_TARGET == HWY_AVX3
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
         avx512::HasAvx512Vbmi())
@@ -1238,7 +1242,7 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
 #if HWY_TARGET == HWY_AVX2
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))
         return BlendChromaRowU10Avx2(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
-                                     min_value, max_value);
+                                     min_value, max_value, ahead);
 #endif
     const int luma_read = std::min(luma_width, width << subsampling_x);
     if (!CheckedRow(
@@ -1423,9 +1427,9 @@ void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma,
 }
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
-                        uint16_t* co_sited) {
+                        uint16_t* co_sited, const uint16_t* ahead) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value,
-                                          max_value, co_sited);
+                                          max_value, co_sited, ahead);
 }
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
@@ -1435,9 +1439,10 @@ void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, 
 }
 void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value) {
+                          const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                          const uint16_t* ahead) {
     HWY_DYNAMIC_DISPATCH(BlendChromaRowU16)(src, dst, luma, luma_width, noise, width, subsampling_x, index, scaling,
-                                            scaling_shift, bit_depth, min_value, max_value);
+                                            scaling_shift, bit_depth, min_value, max_value, ahead);
 }
 void cross_fade_row(const int16_t* old_row, int16_t* cur, int width, int old_weight, int new_weight, int gmin,
                     int gmax) {
