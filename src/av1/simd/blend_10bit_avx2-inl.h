@@ -140,8 +140,8 @@ HWY_INLINE bool AnyAbove10Bits(__m256i any) { return !_mm256_testz_si256(any, _m
 // decoded picture comes from the decoder, not from the cache, and the hardware prefetcher
 // alone left 38 % of the luma kernel's samples on its source loads: in one process against
 // dav1d_apply_grain (1080p 10-bit, Zen 3, one thread) 16 rows ahead took the per-picture
-// cost to 0.957 of what it was (median of 10 interleaved rounds), where 8, 24, 32 and 64 rows
-// gained less (docs/performance-notes.md). At 8 bits it gained nothing: no prefetch there.
+// cost to 0.957 of what it was (median of 10 interleaved rounds); 8, 24 and 64 rows gained
+// less, 32 about as much (docs/performance-notes.md). At 8 bits it gained nothing: none there.
 template <int kVectors>
 HWY_INLINE void PrefetchSourceAhead(const uint16_t* ahead) {
     if (!ahead) return;
