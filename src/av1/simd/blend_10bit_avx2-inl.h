@@ -138,10 +138,12 @@ HWY_INLINE bool AnyAbove10Bits(__m256i any) { return !_mm256_testz_si256(any, _m
 
 // The lines of a step's source samples `ahead` (null: none), one prefetch per 64 bytes. The
 // decoded picture comes from the decoder, not from the cache, and the hardware prefetcher
-// alone left 38 % of the luma kernel's samples on its source loads: in one process against
-// dav1d_apply_grain (1080p 10-bit, Zen 3, one thread) 16 rows ahead took the per-picture
-// cost to 0.957 of what it was (median of 10 interleaved rounds); 8, 24 and 64 rows gained
-// less, 32 about as much (docs/performance-notes.md). At 8 bits it gained nothing: none there.
+// alone left 38 % of the luma kernel's samples on its source loads while the shared host was
+// busy: in one process against dav1d_apply_grain (1080p 10-bit, Zen 3, one thread) 16 rows
+// ahead then took the per-picture cost to 0.957 of what it was (median of 10 interleaved
+// rounds); 8, 24 and 64 rows gained less, 32 about as much. With the host quiet the loads
+// do not wait and it makes no difference (docs/performance-notes.md). At 8 bits it gained
+// nothing: none there.
 template <int kVectors>
 HWY_INLINE void PrefetchSourceAhead(const uint16_t* ahead) {
     if (!ahead) return;
