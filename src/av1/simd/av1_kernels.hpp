@@ -59,6 +59,10 @@ struct PlaneRows {
     std::ptrdiff_t src_stride = 0, dst_stride = 0, luma_stride = 0, noise_step = 0;
 };
 
+// How far below its row the synthesis points the u16 blends' `ahead`: luma rows, chroma rows
+// >> subsampling_y (blend_10bit_avx2-inl.h, PrefetchSourceAhead, gives the measurements).
+inline constexpr int kSourcePrefetchRows = 16;
+
 // Twins of blend_luma_row.
 void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& noise, int width,
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
@@ -69,7 +73,6 @@ void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& no
 // `ahead` (the u16 forms, may be null): a source row further down the plane, at least `width`
 // samples, which the 10-bit AVX2 kernels prefetch as they go (kSourcePrefetchRows). A hint
 // only: the output does not depend on it.
-inline constexpr int kSourcePrefetchRows = 16;  // luma rows ahead; chroma: >> subsampling_y
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
                         uint16_t* co_sited = nullptr, const uint16_t* ahead = nullptr);
