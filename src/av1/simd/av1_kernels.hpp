@@ -71,8 +71,8 @@ void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& no
 // has the samples in registers when it loads them to blend (where dst is src, before it
 // overwrites them).
 // `ahead` (the u16 forms, may be null): a source row further down the plane, at least `width`
-// samples, which the 10-bit AVX2 kernels prefetch as they go (kSourcePrefetchRows). A hint
-// only: the output does not depend on it.
+// samples, which the 10-bit AVX2 and AVX-512 kernels prefetch as they go
+// (kSourcePrefetchRows). A hint only: the output does not depend on it.
 void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                         const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
                         uint16_t* co_sited = nullptr, const uint16_t* ahead = nullptr);

@@ -875,7 +875,7 @@ void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoise
 // whole 64 the generic way, with the seams of their blocks.
 FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
                                           const ScalingLookup& scaling, int scaling_shift, int min_value,
-                                          int max_value) {
+                                          int max_value, const uint16_t* ahead) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
     auto steps = LumaSkippedSteps(src, dst, row, width, scaling, scaling_shift, min_value, max_value, nullptr);
     auto rest = [&](int x, const uint32_t* seams) {
@@ -886,7 +886,7 @@ FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, co
     };
     avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::Luma10Row<decltype(overlap)::value>(src, dst, row, width, scaling, scaling_shift, min_value,
-                                                    max_value, steps.skipped, rest);
+                                                    max_value, ahead, steps.skipped, rest);
     });
     steps.Finish();
 }
@@ -968,7 +968,8 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
 #if HWY_TARGET == HWY_AVX3
     if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi()) {
         if (co_sited) CoSitedLumaRowU16Unchecked(src, width, (width + 1) / 2, co_sited);  // exact on this target
-        return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
+        return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value,
+                                     ahead);
     }
 #endif
     if (!CheckedRow(
@@ -1175,7 +1176,7 @@ void BlendChromaRowU16Generic(const uint16_t* src, uint16_t* dst, const uint16_t
 FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                                             const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
                                             const ScalingLookup& scaling, int scaling_shift, int min_value,
-                                            int max_value) {
+                                            int max_value, const uint16_t* ahead) {
     const BlockNoiseRow row = noise;  // local: the stores cannot alias it
     auto steps = ChromaSkippedSteps(src, dst, luma, luma_width, row, width, index, scaling, scaling_shift, min_value,
                                     max_value);
@@ -1190,8 +1191,8 @@ FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, 
             avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
                 avx512::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
                                     decltype(overlap)::value>(src, dst, luma, row, width, index, scaling,
-                                                              scaling_shift, min_value, max_value, steps.skipped,
-                                                              rest);
+                                                              scaling_shift, min_value, max_value, ahead,
+                                                              steps.skipped, rest);
             });
         });
     });
@@ -1237,7 +1238,7 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
         avx512::HasAvx512Vbmi())
         return BlendChromaRowU10Avx512(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
-                                       min_value, max_value);
+                                       min_value, max_value, ahead);
 #endif
 #if HWY_TARGET == HWY_AVX2
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))

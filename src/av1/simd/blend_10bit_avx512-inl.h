@@ -3,46 +3,61 @@
 // 10 bits, bit-equal to them. Included after blend_u8_avx512-inl.h (whose noise and overlap helpers
 // it shares), on the AVX3 pass only.
 //
-// The scale of a 10-bit sample is scale_lut over the whole range (ScalingLookup::full_table(),
-// 1024 bytes, exact by construction). Sixteen registers hold it; eight two-table byte permutes
-// (vpermi2b, 128 entries each, indexed by the sample's low 7 bits) and three masked merges by
-// its top 3 bits look 64 samples up at once, whatever the picture's content (the generic
-// kernels' shuffle chains are fast only where neighbouring samples share table rows).
+// The scale of a 10-bit sample is scale_lut's own interpolation (7.18.3.5): ScalingLut[x] and
+// ScalingLut[x + 1] for x = index >> 2, weighted by the index's low 2 bits. Eight registers
+// hold the two 256-entry tables (ScalingLookup::table8 and next8); four two-table byte permutes
+// (vpermi2b, 128 entries each) and two masked merges by x's top bit look the two ends of 64
+// samples up at once, and one unsigned x signed byte multiply-add of the (start, end) pairs
+// by (4 - rem, rem) interpolates them, whatever the picture's content (the generic kernels'
+// shuffle chains are fast only where neighbouring samples share table rows). The look-up of
+// the 1024-entry full_table() it replaced took eight permutes and seven merges: on Intel cores
+// a two-table byte permute is three micro-ops, two of them on the one shuffle port, and the
+// interpolation took the per-picture cost to 0.85 of that (Xeon, Emerald Rapids;
+// docs/performance-notes.md).
 #if HWY_TARGET == HWY_AVX3
 
 namespace avx512 {
 
-// full_table() of a 10-bit ScalingLookup in sixteen registers.
-struct Lut1024 {
-    __m512i t[16];
+// ScalingLut and its successor table ScalingLookup::next8 (ScalingLut[min(x + 1, 255)]): the
+// two ends of scale_lut's interpolation, in eight registers.
+struct InterpolationLut {
+    ByteLut start, end;
 };
-FG_AVX512_VBMI inline void LoadLut1024(const uint8_t* table, Lut1024& lut) {
-    for (int k = 0; k < 16; ++k) lut.t[k] = _mm512_loadu_si512(table + 64 * k);
-}
-// table[index] for 64 indices given as their low 7 bits and their top 3 bits (bytes 0..7).
-FG_AVX512_VBMI inline __m512i LookUp1024(const Lut1024& lut, __m512i low7, __m512i top3) {
-    __m512i part[8];
-    for (int k = 0; k < 8; ++k) part[k] = _mm512_permutex2var_epi8(lut.t[2 * k], low7, lut.t[2 * k + 1]);
-    const __mmask64 bit0 = _mm512_test_epi8_mask(top3, _mm512_set1_epi8(1));
-    const __mmask64 bit1 = _mm512_test_epi8_mask(top3, _mm512_set1_epi8(2));
-    const __mmask64 bit2 = _mm512_test_epi8_mask(top3, _mm512_set1_epi8(4));
-    for (int k = 0; k < 4; ++k) part[k] = _mm512_mask_mov_epi8(part[2 * k], bit0, part[2 * k + 1]);
-    for (int k = 0; k < 2; ++k) part[k] = _mm512_mask_mov_epi8(part[2 * k], bit1, part[2 * k + 1]);
-    return _mm512_mask_mov_epi8(part[0], bit2, part[1]);
+FG_AVX512_VBMI inline InterpolationLut LoadInterpolationLut(const ScalingLookup& scaling) {
+    return {LoadByteLut(scaling.table8().data()), LoadByteLut(scaling.next8())};
 }
 
 // The q15 scales of 64 samples in sample order (two vectors of 16-bit lanes) from their
-// scaling indices so: the 10-bit look-up of Luma10Row.
-FG_AVX512_VBMI inline void Scales1024(const Lut1024& lut, __m512i index_low, __m512i index_high, __m128i up_shift,
-                                      __m512i& scale_low, __m512i& scale_high) {
-    const __m512i last = _mm512_set1_epi16(1023), low_bits = _mm512_set1_epi16(0x7F), zero = _mm512_setzero_si512();
+// scaling indices so. start * (4 - rem) + end * rem + 2 >> 2 is the spec's start +
+// Round2((end - start) * rem, 2) (4 * start adds whole steps of 4), and its products fit the
+// byte multiply-add: start and end are unsigned bytes, the weights 0..4. The pack that makes
+// the byte indices interleaves the 128-bit lanes, and unpacking the looked-up pairs undoes it.
+FG_AVX512_VBMI inline void Scales10(const InterpolationLut& lut, __m512i index_low, __m512i index_high,
+                                    __m128i up_shift, __m512i& scale_low, __m512i& scale_high) {
     // indices beyond 10 bits read the last entry, as ScalingLookup does
+    const __m512i last = _mm512_set1_epi16(1023);
     const __m512i i_low = _mm512_min_epu16(index_low, last), i_high = _mm512_min_epu16(index_high, last);
-    const __m512i low7 = _mm512_packus_epi16(_mm512_and_si512(i_low, low_bits), _mm512_and_si512(i_high, low_bits));
-    const __m512i top3 = _mm512_packus_epi16(_mm512_srli_epi16(i_low, 7), _mm512_srli_epi16(i_high, 7));
-    const __m512i scale = LookUp1024(lut, low7, top3);
-    scale_low = _mm512_sll_epi16(_mm512_unpacklo_epi8(scale, zero), up_shift);
-    scale_high = _mm512_sll_epi16(_mm512_unpackhi_epi8(scale, zero), up_shift);
+    const __m512i x = _mm512_packus_epi16(_mm512_srli_epi16(i_low, 2), _mm512_srli_epi16(i_high, 2));
+    const __m512i start = LookUpBytes(lut.start, x), end = LookUpBytes(lut.end, x);
+    const __m512i three = _mm512_set1_epi16(3), four = _mm512_set1_epi16(4);
+    const __m512i quarter = _mm512_set1_epi16(1 << 13);  // rounding high multiply: (v + 2) >> 2
+    auto interpolated = [&](__m512i pairs, __m512i index) FG_AVX512_VBMI {
+        const __m512i rem = _mm512_and_si512(index, three);
+        const __m512i weights = _mm512_sub_epi16(_mm512_or_si512(_mm512_slli_epi16(rem, 8), four), rem);
+        return _mm512_sll_epi16(_mm512_mulhrs_epi16(_mm512_maddubs_epi16(pairs, weights), quarter), up_shift);
+    };
+    scale_low = interpolated(_mm512_unpacklo_epi8(start, end), i_low);
+    scale_high = interpolated(_mm512_unpackhi_epi8(start, end), i_high);
+}
+
+// The two lines of a step's 64 source samples `ahead` (null: none), as the AVX2 twins'
+// PrefetchSourceAhead: 16 luma rows ahead took the per-picture cost to 0.91 of what it was
+// on the Xeon of the look-up above (one process, 1080p 10-bit, median of 8 interleaved
+// rounds; docs/performance-notes.md).
+FG_AVX512_VBMI inline void PrefetchStepAhead(const uint16_t* ahead) {
+    if (!ahead) return;
+    __builtin_prefetch(ahead, 0, 2);
+    __builtin_prefetch(ahead + 32, 0, 2);
 }
 
 // Whether a sample of the OR of a step's samples lies above 10 bits (bad input): the 16-bit
@@ -64,19 +79,20 @@ FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scal
 // Twin of blend_luma_row at 10 bits; `rest(x, seams)` blends samples [x, width) the generic
 // way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
 // byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
-// `skipped`: a step holding a sample above 10 bits was left out (AnyAbove10Bits).
+// `skipped`: a step holding a sample above 10 bits was left out (AnyAbove10Bits); `ahead`:
+// PrefetchStepAhead's row.
 template <Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
                               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
-                              bool& skipped, Rest&& rest) {
-    Lut1024 lut;
-    LoadLut1024(scaling.full_table(), lut);
+                              const uint16_t* ahead, bool& skipped, Rest&& rest) {
+    const InterpolationLut lut = LoadInterpolationLut(scaling);
     const SeamFade fade = MakeSeamFade(row);
     const __m128i up_shift = _mm_cvtsi32_si128(15 - scaling_shift);
     const __m512i vmin = _mm512_set1_epi16(int16_t(min_value)), vmax = _mm512_set1_epi16(int16_t(max_value));
     ForEach64<32, kOverlap>(
         row, width, width,
         [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            PrefetchStepAhead(ahead ? ahead + x : nullptr);
             const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
             if (AnyAbove10Bits(_mm512_or_si512(s_low, s_high))) {
                 skipped = true;
@@ -90,7 +106,7 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
                 noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
             }
             __m512i scale_low, scale_high;
-            Scales1024(lut, s_low, s_high, up_shift, scale_low, scale_high);
+            Scales10(lut, s_low, s_high, up_shift, scale_low, scale_high);
             StoreBlended(dst + x, s_low, scale_low, noise_low, vmin, vmax);
             StoreBlended(dst + x + 32, s_high, scale_high, noise_high, vmin, vmax);
         },
@@ -102,13 +118,14 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
 // generic way. The scaling index of chroma_scaling_index: luma * luma_mult + chroma * mult as
 // one multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits),
 // >> 6, and the pack back to 16 bits restores the sample order the interleave split.
-// `skipped`: a step whose chroma or luma holds a sample above 10 bits was left out.
+// `skipped`: a step whose chroma or luma holds a sample above 10 bits was left out; `ahead`:
+// PrefetchStepAhead's row.
 template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row,
                                 int width, const ChromaScalingIndex& index, const ScalingLookup& scaling,
-                                int scaling_shift, int min_value, int max_value, bool& skipped, Rest&& rest) {
-    Lut1024 lut;
-    LoadLut1024(scaling.full_table(), lut);
+                                int scaling_shift, int min_value, int max_value, const uint16_t* ahead, bool& skipped,
+                                Rest&& rest) {
+    const InterpolationLut lut = LoadInterpolationLut(scaling);
     const SeamFade fade = MakeSeamFade(row);
     const __m128i up_shift = _mm_cvtsi32_si128(15 - scaling_shift);
     const __m512i mults =
@@ -125,6 +142,7 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
     ForEach64<kBlockWidth, kOverlap>(
         row, width, width,
         [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            PrefetchStepAhead(ahead ? ahead + x : nullptr);
             const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
             __m512i i_low = _mm512_loadu_si512(luma + x), i_high = _mm512_loadu_si512(luma + x + 32);
             if (AnyAbove10Bits(_mm512_or_si512(_mm512_ternarylogic_epi64(s_low, s_high, i_low, 0xFE), i_high))) {
@@ -147,7 +165,7 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
                 i_high = merged(i_high, s_high);
             }
             __m512i scale_low, scale_high;
-            Scales1024(lut, i_low, i_high, up_shift, scale_low, scale_high);
+            Scales10(lut, i_low, i_high, up_shift, scale_low, scale_high);
             StoreBlended(dst + x, s_low, scale_low, noise_low, vmin, vmax);
             StoreBlended(dst + x + 32, s_high, scale_high, noise_high, vmin, vmax);
         },
