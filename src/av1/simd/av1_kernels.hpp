@@ -60,7 +60,7 @@ struct PlaneRows {
 };
 
 // How far below its row the synthesis points the u16 blends' `ahead`: luma rows, chroma rows
-// >> subsampling_y (blend_10bit_avx2-inl.h, PrefetchSourceAhead, gives the measurements).
+// >> subsampling_y (PrefetchSourceAhead in av1_kernels_hwy.cpp gives the measurements).
 inline constexpr int kSourcePrefetchRows = 16;
 
 // Twins of blend_luma_row.

@@ -515,6 +515,22 @@ HWY_INLINE void LookUpVector(D8 du8, hn::Vec<D8> index, const ShuffleRows<D8>* c
 
 using D8 = hn::ScalableTag<uint8_t>;
 
+// The lines of a step's kSamples source samples `ahead` (null: none), one prefetch per 64
+// bytes, for the 10-bit AVX2 and AVX-512 blends (blend_10bit_*-inl.h). The decoded picture
+// comes from the decoder, not from the cache, and the hardware prefetcher alone left 38 % of
+// the AVX2 luma kernel's samples on its source loads while the shared host was busy: in one
+// process against dav1d_apply_grain (1080p 10-bit, one thread) 16 rows ahead took the
+// per-picture cost to 0.957 of what it was on a Zen 3 (AVX2, median of 10 interleaved rounds;
+// 8, 24 and 64 rows gained less, 32 about as much; with the host quiet it made no difference)
+// and to 0.91 on an Emerald Rapids Xeon (AVX-512, median of 8; docs/performance-notes.md). At
+// 8 bits it gained nothing on the Zen 3 and no more than the host's noise on the Xeon: none
+// there.
+template <int kSamples>
+HWY_INLINE void PrefetchSourceAhead(const uint16_t* ahead) {
+    if (!ahead) return;
+    for (int k = 0; k < kSamples; k += 32) __builtin_prefetch(ahead + k, 0, 2);
+}
+
 #include "av1/simd/blend_u8_avx512-inl.h"
 #include "av1/simd/blend_10bit_avx512-inl.h"
 

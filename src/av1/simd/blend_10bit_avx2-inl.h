@@ -136,20 +136,6 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
 // it the scalar way (its samples still there, in place too).
 HWY_INLINE bool AnyAbove10Bits(__m256i any) { return !_mm256_testz_si256(any, _mm256_set1_epi16(int16_t(0xFC00))); }
 
-// The lines of a step's source samples `ahead` (null: none), one prefetch per 64 bytes. The
-// decoded picture comes from the decoder, not from the cache, and the hardware prefetcher
-// alone left 38 % of the luma kernel's samples on its source loads while the shared host was
-// busy: in one process against dav1d_apply_grain (1080p 10-bit, Zen 3, one thread) 16 rows
-// ahead then took the per-picture cost to 0.957 of what it was (median of 10 interleaved
-// rounds); 8, 24 and 64 rows gained less, 32 about as much. With the host quiet the loads
-// do not wait and it makes no difference (docs/performance-notes.md). At 8 bits it gained
-// nothing: none there.
-template <int kVectors>
-HWY_INLINE void PrefetchSourceAhead(const uint16_t* ahead) {
-    if (!ahead) return;
-    for (int k = 0; k < kVectors; k += 2) __builtin_prefetch(ahead + 16 * k, 0, 2);
-}
-
 // clip(src + Round2(scale * noise, shift)) of 16 samples into dst (samples within 10 bits
 // here: steps holding others are left out, AnyAbove10Bits).
 HWY_INLINE void StoreBlended10(const Step10Constants& c, uint16_t* dst, __m256i src, __m256i scale, __m256i noise) {
@@ -207,7 +193,7 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
         width, width,
         [&](int x, auto samples) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(samples)::value / 16;
-            PrefetchSourceAhead<kVectors>(ahead ? ahead + x : nullptr);
+            PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
             __m256i v[kVectors], index[kVectors];
             __m256i any = _mm256_setzero_si256();
             for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
@@ -261,7 +247,7 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
         width, width,
         [&](int x, auto samples) FG_INLINE_LAMBDA {
             constexpr int kVectors = decltype(samples)::value / 16;
-            PrefetchSourceAhead<kVectors>(ahead ? ahead + x : nullptr);
+            PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
             __m256i v[kVectors], idx[kVectors];
             __m256i any = _mm256_setzero_si256();
             for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place

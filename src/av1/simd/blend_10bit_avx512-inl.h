@@ -1,7 +1,7 @@
 // 10-bit AV1 noise application (AV1 7.18.3.5) in whole 512-bit vectors, for the AVX3 target of
 // av1_kernels_hwy.cpp on CPUs with AVX512-VBMI: twins of blend_luma_row and blend_chroma_row at
-// 10 bits, bit-equal to them. Included after blend_u8_avx512-inl.h (whose noise and overlap helpers
-// it shares), on the AVX3 pass only.
+// 10 bits, bit-equal to them. Included after blend_u8_avx512-inl.h (whose byte look-up, noise and
+// overlap helpers it shares), on the AVX3 pass only.
 //
 // The scale of a 10-bit sample is scale_lut's own interpolation (7.18.3.5): ScalingLut[x] and
 // ScalingLut[x + 1] for x = index >> 2, weighted by the index's low 2 bits. Eight registers
@@ -50,16 +50,6 @@ FG_AVX512_VBMI inline void Scales10(const InterpolationLut& lut, __m512i index_l
     scale_high = interpolated(_mm512_unpackhi_epi8(start, end), i_high);
 }
 
-// The two lines of a step's 64 source samples `ahead` (null: none), as the AVX2 twins'
-// PrefetchSourceAhead: 16 luma rows ahead took the per-picture cost to 0.91 of what it was
-// on the Xeon of the look-up above (one process, 1080p 10-bit, median of 8 interleaved
-// rounds; docs/performance-notes.md).
-FG_AVX512_VBMI inline void PrefetchStepAhead(const uint16_t* ahead) {
-    if (!ahead) return;
-    __builtin_prefetch(ahead, 0, 2);
-    __builtin_prefetch(ahead + 32, 0, 2);
-}
-
 // Whether a sample of the OR of a step's samples lies above 10 bits (bad input): the 16-bit
 // arithmetic here holds the spec's integers only below 2^14, so such a step writes nothing and
 // sets `skipped`, for the caller to blend it the scalar way (its samples still there, in place
@@ -80,7 +70,7 @@ FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scal
 // way. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that makes the
 // byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes undoes it.
 // `skipped`: a step holding a sample above 10 bits was left out (AnyAbove10Bits); `ahead`:
-// PrefetchStepAhead's row.
+// PrefetchSourceAhead's row.
 template <Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width,
                               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
@@ -92,7 +82,7 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
     ForEach64<32, kOverlap>(
         row, width, width,
         [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
-            PrefetchStepAhead(ahead ? ahead + x : nullptr);
+            PrefetchSourceAhead<64>(ahead ? ahead + x : nullptr);
             const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
             if (AnyAbove10Bits(_mm512_or_si512(s_low, s_high))) {
                 skipped = true;
@@ -119,7 +109,7 @@ FG_AVX512_VBMI void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoi
 // one multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits),
 // >> 6, and the pack back to 16 bits restores the sample order the interleave split.
 // `skipped`: a step whose chroma or luma holds a sample above 10 bits was left out; `ahead`:
-// PrefetchStepAhead's row.
+// PrefetchSourceAhead's row.
 template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
 FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row,
                                 int width, const ChromaScalingIndex& index, const ScalingLookup& scaling,
@@ -142,7 +132,7 @@ FG_AVX512_VBMI void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16
     ForEach64<kBlockWidth, kOverlap>(
         row, width, width,
         [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
-            PrefetchStepAhead(ahead ? ahead + x : nullptr);
+            PrefetchSourceAhead<64>(ahead ? ahead + x : nullptr);
             const __m512i s_low = _mm512_loadu_si512(src + x), s_high = _mm512_loadu_si512(src + x + 32);
             __m512i i_low = _mm512_loadu_si512(luma + x), i_high = _mm512_loadu_si512(luma + x + 32);
             if (AnyAbove10Bits(_mm512_or_si512(_mm512_ternarylogic_epi64(s_low, s_high, i_low, 0xFE), i_high))) {
