@@ -45,7 +45,8 @@ struct BlockOrigins {
     }
 };
 
-// args: bit depth, plane (0 luma, 1 chroma), picture (0 smooth, 1 blocky)
+// args: bit depth, plane (0 luma, 1 chroma), picture (0 smooth, 1 blocky), byte noise (8-bit
+// luma: the noise also as the synthesis's int8 copy of the template, BlockNoiseRow::byte_blocks)
 void BM_Av1Rows(benchmark::State& state) {
     const int bd = int(state.range(0));
     const bool chroma = state.range(1) != 0;
@@ -66,14 +67,27 @@ void BM_Av1Rows(benchmark::State& state) {
     std::vector<const int16_t*> rows(std::size_t(origins.blocks));
     av1::simd::BlockNoiseRow row = av1::kernel_faded_row(chroma ? 1 : 0, bd);
     row.blocks = rows.data();
+    std::vector<int8_t> bytes;
+    std::vector<const int8_t*> byte_rows(std::size_t(origins.blocks));
+    if (state.range(3)) {
+        bytes.assign(t.samples.size() + av1::simd::kByteNoiseReadBytes, int8_t(0));
+        std::copy(t.samples.begin(), t.samples.end(), bytes.begin());
+        row.byte_blocks = byte_rows.data();
+    }
     av1::ChromaScalingIndex index;
     index.mult = p.cb_mult - 128, index.luma_mult = p.cb_luma_mult - 128, index.offset = p.cb_offset - 256;
     const int shift = p.grain_scaling_minus_8 + 8, max_value = (1 << bd) - 1;
     for (auto _ : state) {
         for (int y = 0; y < ph; y++) {
             const int stripe = y / block_h, i = y % block_h;
-            for (int b = 0; b < origins.blocks; b++)
-                rows[std::size_t(b)] = origins.starts[std::size_t(stripe * origins.blocks + b)] + i * t.width;
+            // the blocks' first rows once per stripe, then a row offset down them, as the synthesis does
+            if (i == 0)
+                for (int b = 0; b < origins.blocks; b++) {
+                    rows[std::size_t(b)] = origins.starts[std::size_t(stripe * origins.blocks + b)];
+                    if (row.byte_blocks)
+                        byte_rows[std::size_t(b)] = bytes.data() + (rows[std::size_t(b)] - t.samples.data());
+                }
+            row.row_offset = std::ptrdiff_t(i) * t.width;
             if (bd == 8 && !chroma)
                 av1::simd::blend_luma_row_u8(src.planes[0].row<uint8_t>(y), dst.planes[0].row<uint8_t>(y), row, pw,
                                              scaling, shift, 0, max_value);
@@ -97,8 +111,13 @@ void BM_Av1Rows(benchmark::State& state) {
     state.SetLabel(simd::dispatched_target());
 }
 BENCHMARK(BM_Av1Rows)
-    ->ArgNames({"bd", "chroma", "blocky"})
-    ->ArgsProduct({{8, 10}, {0, 1}, {0, 1}})
+    ->ArgNames({"bd", "chroma", "blocky", "bytes"})
+    ->Apply([](benchmark::internal::Benchmark* b) {
+        for (int bd : {8, 10})
+            for (int chroma : {0, 1})
+                for (int blocky : {0, 1})
+                    for (int bytes = 0; bytes <= (bd == 8 && !chroma); bytes++) b->Args({bd, chroma, blocky, bytes});
+    })
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -75,6 +75,13 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
             if (has_grain_[pl]) generate_chroma_template(p, bit_depth, pl, subx_, suby_, templates_[0], templates_[pl]);
     }
 
+    luma_template_bytes_.clear();
+    if (bit_depth == 8 && has_grain_[0]) {
+        const std::vector<int16_t>& luma = templates_[0].samples;
+        luma_template_bytes_.assign(luma.size() + simd::kByteNoiseReadBytes, 0);
+        std::transform(luma.begin(), luma.end(), luma_template_bytes_.begin(), [](int16_t v) { return int8_t(v); });
+    }
+
     scaling_[0].assign(p.point_y_value.data(), p.point_y_scaling.data(), p.num_y_points, bit_depth);
     if (p.chroma_scaling_from_luma) {
         scaling_[1] = scaling_[2] = scaling_[0];
@@ -95,6 +102,7 @@ void StripeScratch::reserve(int luma_width, std::size_t co_sited_bytes) {
     if (previous_origins.size() < blocks) previous_origins.resize(blocks);
     if (block_rows.size() < blocks) block_rows.resize(blocks);
     if (previous_block_rows.size() < blocks) previous_block_rows.resize(blocks);
+    if (byte_block_rows.size() < blocks) byte_block_rows.resize(blocks);
     if (shared_rows.size() < blocks) shared_rows.resize(blocks);
     if (seams.size() < blocks) seams.resize(blocks);
     for (DrawnOffsets& d : drawn_)
@@ -118,6 +126,7 @@ std::size_t StripeScratch::bytes() const {
     return (noise.capacity() + previous.capacity()) * sizeof(int16_t) +
            (origins.capacity() + previous_origins.capacity()) * sizeof(int32_t) +
            (block_rows.capacity() + previous_block_rows.capacity() + shared_rows.capacity()) * sizeof(const int16_t*) +
+           byte_block_rows.capacity() * sizeof(const int8_t*) +
            seams.capacity() * sizeof(uint32_t) + co_sited_luma.capacity() * sizeof(uint16_t) +
            drawn_[0].bytes.capacity() + drawn_[1].bytes.capacity();
 }
@@ -233,6 +242,12 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         stripe_block_origins(tmpl, scratch.block_offsets(p_.grain_seed, stripe, blocks), blocks, sx, sy,
                              scratch.origins.data());
         if (!row_pointers) first_rows(scratch.origins.data(), scratch.block_rows.data());
+        // 8-bit luma rows read from the template also have its int8 copy (the rows shared with
+        // the stripe above, faded in scratch.noise, have none)
+        const bool byte_noise = pl == 0 && !luma_template_bytes_.empty() && !row_pointers;
+        if (byte_noise)
+            for (int b = 0; b < blocks; ++b)
+                scratch.byte_block_rows[std::size_t(b)] = luma_template_bytes_.data() + scratch.origins[std::size_t(b)];
         const int stripe_h = kBlockSize >> sy;
         for (int i = 0; i < shared_rows; ++i) {
             int16_t* cur = scratch.noise.data() + pitch * std::size_t(i);
@@ -264,9 +279,11 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         if (row_pointers)
             for (int i = shared_rows; i < rows; ++i)
                 blend_rows(i, 1, template_row(scratch.origins.data(), i, scratch.block_rows.data()), 0);
-        else if (rows > shared_rows)
-            blend_rows(shared_rows, rows - shared_rows,
-                       template_row(scratch.origins.data(), shared_rows, scratch.block_rows.data()), tmpl.width);
+        else if (rows > shared_rows) {
+            simd::BlockNoiseRow r = template_row(scratch.origins.data(), shared_rows, scratch.block_rows.data());
+            if (byte_noise) r.byte_blocks = scratch.byte_block_rows.data();
+            blend_rows(shared_rows, rows - shared_rows, r, tmpl.width);
+        }
     };
 
     // Subsampled horizontally above 8 bits, both chroma planes scale by the same luma averages
@@ -424,7 +441,7 @@ std::size_t Av1SynthesisContext::table_bytes() const {
     for (int pl = 0; pl < 3; ++pl)
         n += templates_[pl].samples.capacity() * sizeof(int16_t) +
              scaling_[pl].table8().capacity() + (std::size_t(1) << bit_depth_) + 3 * 256;
-    return n;
+    return n + luma_template_bytes_.capacity();
 }
 
 void Av1PictureSynthesis::apply(const Av1FilmGrainParams& p, const FrameView& src, const FrameView& dst,

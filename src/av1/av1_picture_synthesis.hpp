@@ -33,6 +33,7 @@ struct StripeScratch {
     std::vector<int16_t> previous;
     std::vector<int32_t> origins, previous_origins;
     std::vector<const int16_t*> block_rows, previous_block_rows;
+    std::vector<const int8_t*> byte_block_rows;  // block_rows in the int8 luma template (8 bits)
     // Each block's first sample in the rows shared with the stripe above (made in `noise`).
     std::vector<const int16_t*> shared_rows;
     std::vector<uint32_t> seams;
@@ -113,6 +114,10 @@ private:
     int subx_ = 0, suby_ = 0;
     ClipLimits clip_;
     GrainTemplate templates_[3];
+    // At 8 bits, the luma template as int8 (8-bit grain is -128..127) with
+    // simd::kByteNoiseReadBytes spare bytes, for the kernels that read noise as bytes
+    // (simd::BlockNoiseRow::byte_blocks); empty otherwise.
+    std::vector<int8_t> luma_template_bytes_;
     ScalingLookup scaling_[3];  // [1], [2] alias luma's function with chroma_scaling_from_luma
     bool has_grain_[3] = {false, false, false};
     ChromaScalingIndex chroma_index_[3];

@@ -4,8 +4,9 @@
 // runs (each forced in turn), the way the synthesis hands them their noise: every block's
 // rows in one grain-template-like buffer, the row chosen by row_offset. Covers rows of full
 // HD width and beyond (many 64-sample steps and every tail length), each form of the
-// horizontal overlap (none, given seams, faded in the kernel), every clip, chroma with and
-// without subsampling and scaling from luma, odd luma widths, and in place.
+// horizontal overlap (none, given seams, faded in the kernel), 8-bit noise as int16 and as
+// bytes (BlockNoiseRow::byte_blocks), every clip, chroma with and without subsampling and
+// scaling from luma, odd luma widths, and in place.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,6 +32,9 @@ struct TemplateNoise {
     int pitch = 0;
     std::vector<int16_t> samples;
     std::vector<const int16_t*> blocks;
+    // the int8 copy (BlockNoiseRow::byte_blocks) at 8 bits, padded as the synthesis pads it
+    std::vector<int8_t> bytes;
+    std::vector<const int8_t*> byte_blocks;
     std::vector<uint32_t> seams;
     av1::simd::BlockNoiseRow row;
     std::vector<int16_t> flat;  // row.at(x), as the references take it
@@ -44,6 +48,12 @@ struct TemplateNoise {
         const int count = (width + block_width - 1) / block_width;
         for (int b = 0; b < count; b++) blocks.push_back(samples.data() + u(0, 16));
         row.blocks = blocks.data();
+        if (bd == 8 && u(0, 1)) {  // half the 8-bit cases with it, given seams included (which ignore it)
+            bytes.assign(samples.size() + av1::simd::kByteNoiseReadBytes, int8_t(0));
+            std::copy(samples.begin(), samples.end(), bytes.begin());
+            for (const int16_t* p : blocks) byte_blocks.push_back(bytes.data() + (p - samples.data()));
+            row.byte_blocks = byte_blocks.data();
+        }
         row.block_width = block_width;
         row.row_offset = std::ptrdiff_t(u(0, rows - 1)) * pitch;
         row.gmin = int16_t(-gmax - 1), row.gmax = int16_t(gmax);

@@ -29,9 +29,17 @@ namespace filmgrain::av1::simd {
 //
 // Block b's row starts at blocks[b] + row_offset: a stripe points `blocks` at its blocks' first
 // rows once and moves row_offset down its rows (rather than rewriting every pointer per row).
+//
+// At 8 bits the grain fits a byte (-128..127): byte_blocks, where set, are the same blocks in
+// an int8 copy of the template (byte_blocks[b] + row_offset is block(b) as bytes), for the
+// kernels that read noise as bytes (the AVX-512 VBMI luma rows, which then load half the noise
+// bytes and fade the seams in byte pairs). They read 64 bytes from every such row's start (its
+// block and the next block's overlap columns): the copy is padded for that. Every kernel must
+// give the same output with and without them.
 struct BlockNoiseRow {
     const int16_t* const* blocks = nullptr;
     std::ptrdiff_t row_offset = 0;
+    const int8_t* const* byte_blocks = nullptr;
     const uint32_t* seams = nullptr;
     int block_width = 32;  // 32 >> subsampling_x
     bool fade = false;
@@ -39,6 +47,7 @@ struct BlockNoiseRow {
     int16_t gmin = -128, gmax = 127;
 
     const int16_t* block(int b) const { return blocks[b] + row_offset; }
+    const int8_t* byte_block(int b) const { return byte_blocks[b] + row_offset; }
 
     int16_t at(int x) const {
         const int b = x / block_width, k = x - b * block_width;
@@ -50,6 +59,11 @@ struct BlockNoiseRow {
         return block(b)[k];
     }
 };
+
+// How many bytes from the start of every byte_blocks row the byte kernels read (a block row and
+// the overlap columns 32 and 33 of the same row, as one 32-byte load each); the int8 copy of a
+// template ends with that many spare bytes.
+inline constexpr int kByteNoiseReadBytes = 64;
 
 // Rows [0, count) of a plane for the *_rows kernels: row r reads src + r * src_stride (bytes)
 // and the luma co-sited with it at luma + r * luma_stride, writes dst + r * dst_stride, and

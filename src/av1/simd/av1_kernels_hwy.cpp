@@ -1040,8 +1040,13 @@ FG_AVX512_VBMI void BlendLumaRowsU8Avx512(const uint8_t* src, uint8_t* dst, cons
     };
     avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-            avx512::LumaRows<decltype(overlap)::value, decltype(clip)::value>(
-                src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
+            constexpr avx512::Overlap kOverlap = decltype(overlap)::value;
+            if constexpr (kOverlap != avx512::Overlap::kGivenSeams)
+                if (first.byte_blocks)
+                    return avx512::LumaRows<kOverlap, decltype(clip)::value, true>(
+                        src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
+            avx512::LumaRows<kOverlap, decltype(clip)::value, false>(src, dst, rows, first, width, scaling,
+                                                                    scaling_shift, min_value, max_value, rest);
         });
     });
 }

@@ -150,11 +150,12 @@ FG_AVX512_VBMI inline void NoiseOf64(const int16_t* const* blocks, const uint32_
     }
 }
 
-// What a row's 64-sample steps share: the LUT, the q15 shift of the scales and the clip.
+// What a row's 64-sample steps share: the LUT, the q15 shift of the scales (or, for byte
+// noise, the q15 multiplier 1 << (15 - shift) of the exact products) and the clip.
 struct BlendConstants {
     ByteLut lut;
     __m128i up_shift;
-    __m512i min_value, max_value;
+    __m512i shift_multiplier, min_value, max_value;
 };
 
 // clip(src + Round2(lut[index] * noise, shift)) of 64 samples as bytes in sample order. The
@@ -216,19 +217,76 @@ inline BlockNoiseRow RowFrom(const BlockNoiseRow& row, int x, const uint32_t* se
 FG_AVX512_VBMI inline BlendConstants MakeConstants(const ScalingLookup& scaling, int scaling_shift, int min_value,
                                                    int max_value) {
     return {LoadByteLut(scaling.table8().data()), _mm_cvtsi32_si128(15 - scaling_shift),
-            _mm512_set1_epi8(char(min_value)), _mm512_set1_epi8(char(max_value))};
+            _mm512_set1_epi16(int16_t(1 << (15 - scaling_shift))), _mm512_set1_epi8(char(min_value)),
+            _mm512_set1_epi8(char(max_value))};
+}
+
+// Byte noise (BlockNoiseRow::byte_blocks), luma: the 64 samples of blocks b and b + 1 are one
+// vector of int8 noise in sample order, loaded as two 32-byte halves.
+//
+// The seams: a block's first two samples fade with columns 32 and 33 of its left block. Those
+// two columns of block b - 1 and of block b, loaded as the first bytes of each half (the same
+// row of each block, 32 bytes on), interleave byte by byte with the own noise, so that one
+// unsigned x signed byte multiply-add by the (old, new) weight pairs makes each weighted sum
+// in a 16-bit lane (at most 45 * 128: no saturation); the rounding high multiply by 1 << 10
+// is Round2 by 5, and the signed saturating pack back to bytes is the clamp to -128..127,
+// GrainMin and GrainMax at 8 bits.
+struct ByteSeamFade {
+    __m512i weights, round;
+};
+FG_AVX512_VBMI inline ByteSeamFade MakeByteSeamFade(const BlockNoiseRow& row) {
+    const uint32_t w = uint32_t(uint8_t(row.fade_old[0])) | uint32_t(uint8_t(row.fade_new[0])) << 8 |
+                       uint32_t(uint8_t(row.fade_old[1])) << 16 | uint32_t(uint8_t(row.fade_new[1])) << 24;
+    return {_mm512_set1_epi32(int32_t(w)), _mm512_set1_epi16(1 << 10)};
+}
+template <bool kFade>
+FG_AVX512_VBMI inline __m512i ByteNoiseOf64(const int8_t* left, const int8_t* own, const int8_t* next,
+                                            __mmask64 seams, const ByteSeamFade& f) {
+    auto halves = [](const int8_t* a, const int8_t* b) FG_AVX512_VBMI {
+        return _mm512_inserti64x4(_mm512_castsi256_si512(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(a))),
+                                  _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b)), 1);
+    };
+    const __m512i noise = halves(own, next);
+    if constexpr (!kFade) return noise;
+    const __m512i columns = halves(left + 32, own + 32);  // bytes 0-1 and 32-33 used
+    const __m512i sums = _mm512_maddubs_epi16(f.weights, _mm512_unpacklo_epi8(columns, noise));
+    const __m512i faded = _mm512_mulhrs_epi16(sums, f.round);
+    return _mm512_mask_mov_epi8(noise, seams, _mm512_packs_epi16(faded, faded));
+}
+
+// clip(src + Round2(lut[src] * noise, shift)) of 64 samples, the noise as int8 in sample order.
+// The product scale * noise is made exactly by the unsigned x signed byte multiply-add with a
+// zero byte beside each noise byte: noise_low holds noise 0-7 of every 128-bit lane in the high
+// bytes of its 16-bit lanes, noise_high noise 8-15 in the low bytes, so one shuffle of the
+// scales into (scale[8 + i], scale[i]) pairs serves both (at most 255 * 128, no saturation);
+// the rounding high multiply by 1 << (15 - shift) is Round2 by shift. The 16-bit sums are in
+// unpack order, so the final pack restores sample order.
+template <bool kClip>
+FG_AVX512_VBMI inline __m512i AddByteNoise64(const BlendConstants& c, __m512i src, __m512i noise) {
+    const __m512i zero = _mm512_setzero_si512();
+    const __m512i pairs = _mm512_broadcast_i32x4(_mm_setr_epi8(8, 0, 9, 1, 10, 2, 11, 3, 12, 4, 13, 5, 14, 6, 15, 7));
+    const __m512i scale = _mm512_shuffle_epi8(LookUpBytes(c.lut, src), pairs);
+    const __m512i product_low = _mm512_maddubs_epi16(scale, _mm512_unpacklo_epi8(zero, noise));
+    const __m512i product_high = _mm512_maddubs_epi16(scale, _mm512_unpackhi_epi8(noise, zero));
+    const __m512i low = _mm512_add_epi16(_mm512_unpacklo_epi8(src, zero), _mm512_mulhrs_epi16(product_low, c.shift_multiplier));
+    const __m512i high = _mm512_add_epi16(_mm512_unpackhi_epi8(src, zero), _mm512_mulhrs_epi16(product_high, c.shift_multiplier));
+    __m512i out = _mm512_packus_epi16(low, high);
+    if constexpr (kClip) out = _mm512_min_epu8(_mm512_max_epu8(out, c.min_value), c.max_value);
+    return out;
 }
 
 // Twin of blend_luma_row at 8 bits for rows.count rows (PlaneRows); `rest(r, x, seams)` blends
 // samples [x, width) of row r the generic way. Unpack order: the samples themselves are the
 // indices, and the noise shuffles cost what a lane-restoring permute would.
-template <Overlap kOverlap, bool kClip, class Rest>
+// With kBytes (byte_blocks set; no given seams) the steps read the noise as bytes.
+template <Overlap kOverlap, bool kClip, bool kBytes, class Rest>
 FG_AVX512_VBMI void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& first_row,
                              int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
                              Rest&& rest) {
     // made once for the rows, in registers
     const BlendConstants c = MakeConstants(scaling, scaling_shift, min_value, max_value);
     const SeamFade fade = MakeSeamFade(first_row);
+    const ByteSeamFade byte_fade = MakeByteSeamFade(first_row);
     const __m512i zero = _mm512_setzero_si512();
     BlockNoiseRow row = first_row;
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
@@ -237,6 +295,16 @@ FG_AVX512_VBMI void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& 
         ForEach64<32, kOverlap>(
             row, width, width,
             [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+                if constexpr (kBytes) {
+                    static_assert(kOverlap != Overlap::kGivenSeams);
+                    // the seams of both halves; the row's first block has no left
+                    const int b = x / 32;
+                    const __m512i noise = ByteNoiseOf64<kOverlap == Overlap::kFade>(
+                        row.byte_block(b ? b - 1 : 0), row.byte_block(b), row.byte_block(b + 1),
+                        x ? 0x0000000300000003ull : 0x0000000300000000ull, byte_fade);
+                    _mm512_storeu_si512(d + x, AddByteNoise64<kClip>(c, _mm512_loadu_si512(s + x), noise));
+                    return;
+                }
                 __m512i noise_low, noise_high;
                 NoiseOf64<32, true, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
                 if constexpr (kOverlap == Overlap::kFade) {
