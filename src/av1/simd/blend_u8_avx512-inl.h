@@ -254,23 +254,25 @@ FG_AVX512_VBMI inline __m512i ByteNoiseOf64(const int8_t* left, const int8_t* ow
     return _mm512_mask_mov_epi8(noise, seams, _mm512_packs_epi16(faded, faded));
 }
 
-// clip(src + Round2(lut[src] * noise, shift)) of 64 samples, the noise as int8 in sample order.
-// The product scale * noise is made exactly by the unsigned x signed byte multiply-add with a
-// zero byte beside each noise byte: noise_low holds noise 0-7 of every 128-bit lane in the high
-// bytes of its 16-bit lanes, noise_high noise 8-15 in the low bytes, so one shuffle of the
-// scales into (scale[8 + i], scale[i]) pairs serves both (at most 255 * 128, no saturation);
-// the rounding high multiply by 1 << (15 - shift) is Round2 by shift. The 16-bit sums are in
-// unpack order, so the final pack restores sample order.
+// clip(src + Round2(lut[src] * noise, shift)) of 64 samples, the noise as int8 in sample order,
+// without leaving byte order. The unsigned x signed byte multiply-add of the scales with the
+// noise's even bytes (odd ones zeroed) is scale * noise of the even samples in 16-bit lanes,
+// with the odd bytes kept the odd samples' (at most 255 * 128: no saturation); the rounding high
+// multiply by 1 << (15 - shift) is Round2 by shift. Since shift >= 8 that is within -127..127, so
+// the low byte of each lane is the whole term, and the odd samples' terms shifted up into the
+// high bytes complete the 64 terms as bytes. src + term clipped to 0..255 is then one signed
+// saturating byte add of both with src biased by 128 (and the bias taken off again).
 template <bool kClip>
 FG_AVX512_VBMI inline __m512i AddByteNoise64(const BlendConstants& c, __m512i src, __m512i noise) {
-    const __m512i zero = _mm512_setzero_si512();
-    const __m512i pairs = _mm512_broadcast_i32x4(_mm_setr_epi8(8, 0, 9, 1, 10, 2, 11, 3, 12, 4, 13, 5, 14, 6, 15, 7));
-    const __m512i scale = _mm512_shuffle_epi8(LookUpBytes(c.lut, src), pairs);
-    const __m512i product_low = _mm512_maddubs_epi16(scale, _mm512_unpacklo_epi8(zero, noise));
-    const __m512i product_high = _mm512_maddubs_epi16(scale, _mm512_unpackhi_epi8(noise, zero));
-    const __m512i low = _mm512_add_epi16(_mm512_unpacklo_epi8(src, zero), _mm512_mulhrs_epi16(product_low, c.shift_multiplier));
-    const __m512i high = _mm512_add_epi16(_mm512_unpackhi_epi8(src, zero), _mm512_mulhrs_epi16(product_high, c.shift_multiplier));
-    __m512i out = _mm512_packus_epi16(low, high);
+    constexpr __mmask64 kEven = 0x5555555555555555ull;
+    const __m512i scale = LookUpBytes(c.lut, src);
+    auto terms = [&](__mmask64 samples) FG_AVX512_VBMI {
+        return _mm512_mulhrs_epi16(_mm512_maddubs_epi16(scale, _mm512_maskz_mov_epi8(samples, noise)),
+                                   c.shift_multiplier);
+    };
+    const __m512i term = _mm512_mask_mov_epi8(terms(kEven), ~kEven, _mm512_slli_epi16(terms(~kEven), 8));
+    const __m512i bias = _mm512_set1_epi8(char(0x80));
+    __m512i out = _mm512_xor_si512(_mm512_adds_epi8(_mm512_xor_si512(src, bias), term), bias);
     if constexpr (kClip) out = _mm512_min_epu8(_mm512_max_epu8(out, c.min_value), c.max_value);
     return out;
 }
