@@ -14,6 +14,10 @@
 //
 // The horizontal overlap (overlap_flag) changes the first two noise samples of every block
 // but the first: faded in the noise vectors, all of a vector's blocks at once (FadeFirstPairs).
+//
+// Luma rows whose noise also comes as bytes (BlockNoiseRow::byte_blocks: 8-bit grain fits
+// int8) never leave byte order: ByteNoiseOf64 and AddByteNoise64, with fewer operations and
+// half the shuffles of the 16-bit form (docs/performance-notes.md gives the measurements).
 #if HWY_TARGET == HWY_AVX3
 
 // Highway's AVX3 target plus VBMI (vpermi2b); these functions are only called after
