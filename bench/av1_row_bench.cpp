@@ -70,8 +70,7 @@ void BM_Av1Rows(benchmark::State& state) {
     std::vector<int8_t> bytes;
     std::vector<const int8_t*> byte_rows(std::size_t(origins.blocks));
     if (state.range(3)) {
-        bytes.assign(t.samples.size() + av1::simd::kByteNoiseReadBytes, int8_t(0));
-        std::copy(t.samples.begin(), t.samples.end(), bytes.begin());
+        av1::simd::copy_noise_as_bytes(t.samples, bytes);
         row.byte_blocks = byte_rows.data();
     }
     av1::ChromaScalingIndex index;

@@ -76,11 +76,8 @@ void Av1SynthesisContext::reset(const Av1FilmGrainParams& p, ChromaFormat format
     }
 
     luma_template_bytes_.clear();
-    if (bit_depth == 8 && has_grain_[0]) {
-        const std::vector<int16_t>& luma = templates_[0].samples;
-        luma_template_bytes_.assign(luma.size() + simd::kByteNoiseReadBytes, 0);
-        std::transform(luma.begin(), luma.end(), luma_template_bytes_.begin(), [](int16_t v) { return int8_t(v); });
-    }
+    if (bit_depth == 8 && has_grain_[0] && simd::luma_rows_read_byte_noise())
+        simd::copy_noise_as_bytes(templates_[0].samples, luma_template_bytes_);
 
     scaling_[0].assign(p.point_y_value.data(), p.point_y_scaling.data(), p.num_y_points, bit_depth);
     if (p.chroma_scaling_from_luma) {
@@ -244,7 +241,7 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
         if (!row_pointers) first_rows(scratch.origins.data(), scratch.block_rows.data());
         // 8-bit luma rows read from the template also have its int8 copy (the rows shared with
         // the stripe above, faded in scratch.noise, have none)
-        const bool byte_noise = pl == 0 && !luma_template_bytes_.empty() && !row_pointers;
+        const bool byte_noise = pl == 0 && !luma_template_bytes_.empty();
         if (byte_noise)
             for (int b = 0; b < blocks; ++b)
                 scratch.byte_block_rows[std::size_t(b)] = luma_template_bytes_.data() + scratch.origins[std::size_t(b)];

@@ -49,8 +49,7 @@ struct TemplateNoise {
         for (int b = 0; b < count; b++) blocks.push_back(samples.data() + u(0, 16));
         row.blocks = blocks.data();
         if (bd == 8 && u(0, 1)) {  // half the 8-bit cases with it, given seams included (which ignore it)
-            bytes.assign(samples.size() + av1::simd::kByteNoiseReadBytes, int8_t(0));
-            std::copy(samples.begin(), samples.end(), bytes.begin());
+            av1::simd::copy_noise_as_bytes(samples, bytes);
             for (const int16_t* p : blocks) byte_blocks.push_back(bytes.data() + (p - samples.data()));
             row.byte_blocks = byte_blocks.data();
         }
@@ -315,6 +314,18 @@ TEST_P(SimdAv1BlendRowsEquivalence, CrossFadedRows) {
                 << "iteration " << iter << " x " << x << " width " << width << " bd " << bd << " mode " << mode;
         for (std::size_t x = std::size_t(width); x < got.size(); x++) ASSERT_EQ(got[x], int16_t(0x7777)) << "wrote past the row";
     }
+}
+
+// The copy the byte kernels read: every 8-bit noise value as it is, then the spare bytes
+// they may read past the last row, zero (a reused buffer is resized, not appended to).
+TEST(Av1ByteNoise, CopyKeepsEveryValueAndPadsForTheKernelsReads) {
+    std::vector<int16_t> samples;
+    for (int v = -128; v <= 127; v++) samples.push_back(int16_t(v));
+    std::vector<int8_t> bytes(1000, int8_t(5));
+    av1::simd::copy_noise_as_bytes(samples, bytes);
+    ASSERT_EQ(bytes.size(), samples.size() + std::size_t(av1::simd::kByteNoiseReadBytes));
+    for (std::size_t i = 0; i < samples.size(); i++) ASSERT_EQ(int(bytes[i]), int(samples[i])) << i;
+    for (std::size_t i = samples.size(); i < bytes.size(); i++) ASSERT_EQ(int(bytes[i]), 0) << i;
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, SimdAv1BlendRowsEquivalence, ::testing::ValuesIn(simd::available_targets()),

@@ -14,6 +14,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "av1/grain_blending.hpp"
 
@@ -64,6 +65,14 @@ struct BlockNoiseRow {
 // the overlap columns 32 and 33 of the same row, as one 32-byte load each); the int8 copy of a
 // template ends with that many spare bytes.
 inline constexpr int kByteNoiseReadBytes = 64;
+
+// Whether the luma row kernels this CPU dispatches to read BlockNoiseRow::byte_blocks (the
+// AVX-512 VBMI form): where none does, the synthesis makes no int8 copy.
+bool luma_rows_read_byte_noise();
+
+// The int8 copy of 8-bit noise `samples` (each within -128..127) for byte_blocks, with
+// kByteNoiseReadBytes spare bytes; `out` reuses its storage.
+void copy_noise_as_bytes(const std::vector<int16_t>& samples, std::vector<int8_t>& out);
 
 // Rows [0, count) of a plane for the *_rows kernels: row r reads src + r * src_stride (bytes)
 // and the luma co-sited with it at luma + r * luma_stride, writes dst + r * dst_stride, and

@@ -1121,6 +1121,14 @@ void BlendChromaRowsU8Avx2(const uint8_t* src, uint8_t* dst, const uint8_t* luma
 }
 #endif
 
+bool LumaRowsReadByteNoise() {
+#if HWY_TARGET == HWY_AVX3
+    return avx512::HasAvx512Vbmi();  // BlendLumaRowsU8Avx512
+#else
+    return false;
+#endif
+}
+
 // Row by row where no target form takes several (each row one call of the same target: no
 // dispatch per row).
 void BlendLumaRowsU8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise, int width,
@@ -1425,6 +1433,7 @@ HWY_EXPORT(BlendLumaRowU8);
 HWY_EXPORT(BlendLumaRowU16);
 HWY_EXPORT(BlendChromaRowU8);
 HWY_EXPORT(BlendLumaRowsU8);
+HWY_EXPORT(LumaRowsReadByteNoise);
 HWY_EXPORT(BlendChromaRowsU8);
 HWY_EXPORT(BlendChromaRowU16);
 HWY_EXPORT(CrossFadeRow);
@@ -1436,6 +1445,13 @@ void blend_luma_row_u8(const uint8_t* src, uint8_t* dst, const BlockNoiseRow& no
                        const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU8)(src, dst, noise, width, scaling, scaling_shift, min_value, max_value);
 }
+bool luma_rows_read_byte_noise() { return HWY_DYNAMIC_DISPATCH(LumaRowsReadByteNoise)(); }
+
+void copy_noise_as_bytes(const std::vector<int16_t>& samples, std::vector<int8_t>& out) {
+    out.assign(samples.size() + kByteNoiseReadBytes, 0);
+    std::transform(samples.begin(), samples.end(), out.begin(), [](int16_t v) { return int8_t(v); });
+}
+
 void blend_luma_rows_u8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
                         int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowsU8)(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value);
