@@ -26,10 +26,18 @@ void copy_rows_without_grain(const PlaneView& s, const PlaneView& d, int y0, int
         std::memcpy(d.row<Pixel>(y), s.row<Pixel>(y), sizeof(Pixel) * static_cast<std::size_t>(width));
 }
 
-// The source row `rows` below y for the kernels to prefetch (simd::kSourcePrefetchRows), or
-// null past the plane's last row (`plane_rows`: a view's own height may be left 0).
-const uint16_t* source_ahead(const PlaneView& s, int y, int rows, int plane_rows) {
-    return y + rows < plane_rows ? s.row<const uint16_t>(y + rows) : nullptr;
+// Rows [y, y + count) of source plane s and output plane d for the u16 row kernels, the noise
+// `step` down a row, each prefetching the source row `ahead` rows below it
+// (simd::kSourcePrefetchRows) where that lies in the plane (`plane_rows`: a view's own height
+// may be left 0).
+simd::PlaneRows rows_ahead(const PlaneView& s, const PlaneView& d, int y, int count, std::ptrdiff_t step, int ahead,
+                           int plane_rows) {
+    simd::PlaneRows rows{count, s.stride, d.stride, 0, step};
+    if (y + ahead < plane_rows) {
+        rows.ahead = s.row<const uint16_t>(y + ahead);
+        rows.ahead_count = std::min(count, plane_rows - (y + ahead));
+    }
+    return rows;
 }
 }  // namespace
 
@@ -309,16 +317,12 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                     simd::blend_luma_rows_u8(s.row<Pixel>(y0 + i0), d.row<Pixel>(y0 + i0), in_rows, nz, width_,
                                              scaling_[0], scaling_shift, clip_.min_value, clip_.max_luma);
                 } else {
-                    simd::BlockNoiseRow r = nz;
-                    for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
-                        const int y = y0 + i;
-                        const bool co_sited_row = share_co_sited && (i & ((1 << suby_) - 1)) == 0;
-                        simd::blend_luma_row_u16(
-                            s.row<Pixel>(y), d.row<Pixel>(y), r, width_, scaling_[0], scaling_shift, bit_depth_,
-                            clip_.min_value, clip_.max_luma,
-                            co_sited_row ? co_sited + std::ptrdiff_t(i >> suby_) * chroma_width : nullptr,
-                            source_ahead(s, y, simd::kSourcePrefetchRows, height_));
-                    }
+                    simd::CoSitedRows shared;
+                    if (share_co_sited) shared = {co_sited, chroma_width, suby_, i0};
+                    simd::blend_luma_rows_u16(s.row<Pixel>(y0 + i0), d.row<Pixel>(y0 + i0),
+                                              rows_ahead(s, d, y0 + i0, count, step, simd::kSourcePrefetchRows, height_),
+                                              nz, width_, scaling_[0], scaling_shift, bit_depth_, clip_.min_value,
+                                              clip_.max_luma, shared);
                 }
             });
             co_sited_made = share_co_sited;
@@ -336,18 +340,17 @@ void Av1SynthesisContext::apply_stripe_optimized(const FrameView& src, const Fra
                                            subx_, chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
                                            clip_.min_value, clip_.max_chroma);
             } else {
-                simd::BlockNoiseRow r = nz;
-                for (int i = i0; i < i0 + count; ++i, r.row_offset += step) {
-                    const int y = y0 + i;
-                    const Pixel* luma =
-                        share_co_sited ? co_sited + std::ptrdiff_t(i) * pw : src.planes[0].row<Pixel>(y << suby_);
-                    const int luma_width = share_co_sited ? pw : width_, sx = share_co_sited ? 0 : subx_;
-                    simd::blend_chroma_row_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, luma_width, r, pw, sx,
-                                               chroma_index_[pl], scaling_[pl], scaling_shift, bit_depth_,
-                                               clip_.min_value, clip_.max_chroma,
-                                               source_ahead(s, y, simd::kSourcePrefetchRows >> suby_,
-                                                            plane_height(format_, pl, height_)));
-                }
+                const int y = y0 + i0;
+                simd::PlaneRows in_rows = rows_ahead(s, d, y, count, step, simd::kSourcePrefetchRows >> suby_,
+                                                     plane_height(format_, pl, height_));
+                // the shared co-sited rows are unsubsampled luma of the chroma width
+                in_rows.luma_stride = share_co_sited ? std::ptrdiff_t(sizeof(Pixel)) * pw : src.planes[0].stride << suby_;
+                const Pixel* luma =
+                    share_co_sited ? co_sited + std::ptrdiff_t(i0) * pw : src.planes[0].row<Pixel>(y << suby_);
+                simd::blend_chroma_rows_u16(s.row<Pixel>(y), d.row<Pixel>(y), luma, share_co_sited ? pw : width_,
+                                            in_rows, nz, pw, share_co_sited ? 0 : subx_, chroma_index_[pl],
+                                            scaling_[pl], scaling_shift, bit_depth_, clip_.min_value,
+                                            clip_.max_chroma);
             }
         });
     // Luma first where that is safe (out of place, or the co-sited rows made before luma is

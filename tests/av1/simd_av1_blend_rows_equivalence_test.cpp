@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -288,6 +289,120 @@ TEST_P(SimdAv1BlendRowsEquivalence, EightBitRowsOfAStripe) {
                                         clip.min_value, clip.max_chroma);
         ASSERT_EQ(got, want) << "chroma rows, iteration " << iter << " width " << chroma_width << " rows "
                              << chroma_rows;
+    }
+}
+
+// The several-row kernels above 8 bits (blend_luma_rows_u16 / blend_chroma_rows_u16, as the
+// synthesis calls them): each row at its stride, its noise r template rows down, a row to
+// prefetch for some rows and none for the others, the co-sited luma of every row or every
+// other one from any row of the stripe on (CoSitedRows::first_row), nothing written beside
+// them, in place or not, and some rows holding samples above 10 bits (steps the 10-bit forms
+// leave to the scalar way, row by row).
+TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRowsOfAStripe) {
+    for (int iter = 0; iter < 80; iter++) {
+        const int bd = uniform(0, 3) ? 10 : 12;
+        const int width = uniform(0, 1) ? 1920 : uniform(1, 700), subx = uniform(0, 1);
+        const int mode = uniform(0, bd == 10 ? 2 : 1);
+        const int luma_width = subx ? 2 * width - uniform(0, 1) : width;
+        const int chroma_width = subx ? (luma_width + 1) / 2 : width;
+        const int rows = uniform(1, 34);
+        const av1::ScalingLookup scaling = random_scaling(rng, bd);
+        const int shift = uniform(8, 11);
+        const av1::ClipLimits clip = av1::clip_limits(uniform(0, 1), bd, uniform(0, 2));
+        const av1::ChromaScalingIndex index{uniform(0, 3) == 0, uniform(-128, 127), uniform(-128, 127),
+                                            uniform(-256, 255)};
+        TemplateNoise luma_noise(luma_width, 32, bd, rows + 40, mode, rng);
+        // unsubsampled luma (or the shared co-sited rows) with 16- or 32-wide chroma blocks
+        TemplateNoise chroma_noise(chroma_width, uniform(0, 1) ? 16 : 32, bd, rows + 40, mode, rng);
+        luma_noise.row.row_offset = std::ptrdiff_t(uniform(0, 40)) * luma_noise.pitch;
+        chroma_noise.row.row_offset = std::ptrdiff_t(uniform(0, 40)) * chroma_noise.pitch;
+        const int luma_stride = luma_width + uniform(0, 40), chroma_stride = chroma_width + uniform(0, 40);
+        std::vector<uint16_t> luma = random_samples<uint16_t>(rng, luma_stride * rows, bd, uniform(0, 1));
+        std::vector<uint16_t> chroma = random_samples<uint16_t>(rng, chroma_stride * rows, bd, uniform(0, 1));
+        if (uniform(0, 2) == 0)  // a few samples above 10 bits in a few rows
+            for (int k = uniform(1, 6); k > 0; k--) {
+                luma[std::size_t(uniform(0, int(luma.size()) - 1))] = uint16_t(uniform(1024, 65535));
+                chroma[std::size_t(uniform(0, int(chroma.size()) - 1))] = uint16_t(uniform(1024, 65535));
+            }
+        const int got_stride = luma_stride + uniform(0, 40);
+        std::vector<uint16_t> want(std::size_t(got_stride) * std::size_t(rows), uint16_t(7)), got = want;
+        auto noise_of = [](const TemplateNoise& t, int r) {
+            av1::simd::BlockNoiseRow row = t.row;
+            row.row_offset += std::ptrdiff_t(r) * t.pitch;
+            std::vector<int16_t> flat;
+            for (int x = 0; x < int(t.flat.size()); x++) flat.push_back(row.at(x));
+            return flat;
+        };
+        // the rows' prefetch: none, or for the first ahead_count rows (the output must not depend on it)
+        auto with_ahead = [&](av1::simd::PlaneRows r, const std::vector<uint16_t>& source) {
+            if (uniform(0, 1)) r.ahead = source.data(), r.ahead_count = uniform(0, r.count);
+            return r;
+        };
+        // co-sited luma of the stripe's rows from first_row on, every row or every other one
+        const int rows_shift = uniform(0, 1), first_row = uniform(0, 3);
+        const int co_sited_width = (luma_width + 1) / 2, co_sited_rows = (first_row + rows) / (1 << rows_shift) + 1;
+        const std::size_t co_sited_size = std::size_t(co_sited_width) * std::size_t(co_sited_rows);
+        std::vector<uint16_t> co_sited_want(co_sited_size, uint16_t(0x7777)), co_sited_got = co_sited_want;
+        const bool in_place = uniform(0, 1);
+        for (int r = 0; r < rows; r++) {
+            av1::blend_luma_row<uint16_t>(luma.data() + r * luma_stride, want.data() + r * got_stride,
+                                          noise_of(luma_noise, r).data(), luma_width, scaling, shift, clip.min_value,
+                                          clip.max_luma);
+            const int i = first_row + r;
+            if (i % (1 << rows_shift) == 0)
+                av1::co_sited_luma_row<uint16_t>(luma.data() + r * luma_stride, luma_width, co_sited_width,
+                                                 co_sited_want.data() + (i >> rows_shift) * co_sited_width);
+        }
+        const av1::simd::CoSitedRows co_sited{co_sited_got.data(), co_sited_width, rows_shift, first_row};
+        if (in_place) {
+            // got holds the source at got's stride, blended where it is
+            for (int r = 0; r < rows; r++)
+                std::copy_n(luma.data() + r * luma_stride, luma_width, got.data() + r * got_stride);
+            const std::vector<uint16_t> src = got;
+            const av1::simd::PlaneRows luma_rows = with_ahead({rows, got_stride * 2, got_stride * 2, 0, luma_noise.pitch}, src);
+            av1::simd::blend_luma_rows_u16(got.data(), got.data(), luma_rows, luma_noise.row, luma_width, scaling,
+                                           shift, bd, clip.min_value, clip.max_luma, co_sited);
+        } else {
+            const av1::simd::PlaneRows luma_rows =
+                with_ahead({rows, luma_stride * 2, got_stride * 2, 0, luma_noise.pitch}, luma);
+            av1::simd::blend_luma_rows_u16(luma.data(), got.data(), luma_rows, luma_noise.row, luma_width, scaling,
+                                           shift, bd, clip.min_value, clip.max_luma, co_sited);
+        }
+        ASSERT_EQ(got, want) << "luma rows, iteration " << iter << " bd " << bd << " width " << luma_width
+                             << " rows " << rows << " mode " << mode << " in place " << in_place;
+        ASSERT_EQ(co_sited_got, co_sited_want) << "co-sited rows, iteration " << iter << " shift " << rows_shift
+                                               << " first row " << first_row;
+
+        // chroma with luma of its width (the shared co-sited rows) or subsampled luma
+        const bool co_sited_luma = uniform(0, 1) && rows_shift == 0 && first_row == 0;
+        const uint16_t* chroma_luma = co_sited_luma ? co_sited_want.data() : luma.data();
+        const std::ptrdiff_t chroma_luma_stride = co_sited_luma ? co_sited_width : luma_stride;
+        const int chroma_luma_width = co_sited_luma ? co_sited_width : luma_width;
+        const int chroma_subx = co_sited_luma ? 0 : subx;
+        const int chroma_w = co_sited_luma ? co_sited_width : chroma_width;
+        std::optional<TemplateNoise> own_noise;
+        if (co_sited_luma) {
+            own_noise.emplace(chroma_w, 16 << uniform(0, 1), bd, rows + 40, mode, rng);
+            own_noise->row.row_offset = std::ptrdiff_t(uniform(0, 40)) * own_noise->pitch;
+        }
+        const TemplateNoise& noise = co_sited_luma ? *own_noise : chroma_noise;
+        std::vector<uint16_t> chroma_src = chroma;
+        if (co_sited_luma) chroma_src = random_samples<uint16_t>(rng, chroma_stride * rows + chroma_w, bd, false);
+        const int chroma_src_stride = co_sited_luma ? std::max(chroma_stride, chroma_w) : chroma_stride;
+        want.assign(want.size(), uint16_t(9));
+        got = want;
+        for (int r = 0; r < rows; r++)
+            av1::blend_chroma_row<uint16_t>(chroma_src.data() + r * chroma_src_stride, want.data() + r * got_stride,
+                                            chroma_luma + r * chroma_luma_stride, chroma_luma_width,
+                                            noise_of(noise, r).data(), chroma_w, chroma_subx, index, scaling, shift,
+                                            bd, clip.min_value, clip.max_chroma);
+        const av1::simd::PlaneRows chroma_rows = with_ahead(
+            {rows, chroma_src_stride * 2, got_stride * 2, chroma_luma_stride * 2, noise.pitch}, chroma_src);
+        av1::simd::blend_chroma_rows_u16(chroma_src.data(), got.data(), chroma_luma, chroma_luma_width, chroma_rows,
+                                         noise.row, chroma_w, chroma_subx, index, scaling, shift, bd, clip.min_value,
+                                         clip.max_chroma);
+        ASSERT_EQ(got, want) << "chroma rows, iteration " << iter << " bd " << bd << " width " << chroma_w
+                             << " rows " << rows << " co-sited luma " << co_sited_luma << " subx " << chroma_subx;
     }
 }
 

@@ -77,9 +77,30 @@ void copy_noise_as_bytes(const std::vector<int16_t>& samples, std::vector<int8_t
 // Rows [0, count) of a plane for the *_rows kernels: row r reads src + r * src_stride (bytes)
 // and the luma co-sited with it at luma + r * luma_stride, writes dst + r * dst_stride, and
 // takes the noise row with row_offset + r * noise_step (the next template row).
+// The u16 kernels prefetch, for rows r < ahead_count, the source row at ahead + r * src_stride
+// (kSourcePrefetchRows further down: the rows whose such row lies in the plane). A hint only:
+// the output does not depend on it.
 struct PlaneRows {
     int count = 1;
     std::ptrdiff_t src_stride = 0, dst_stride = 0, luma_stride = 0, noise_step = 0;
+    const uint16_t* ahead = nullptr;
+    int ahead_count = 0;
+};
+
+// Where blend_luma_rows_u16 writes co_sited_luma_row_u16 of the clean rows (horizontally
+// subsampled chroma above 8 bits, (width + 1) / 2 samples a row): row r is row
+// i = first_row + r of the stripe, and every i that is a multiple of 1 << rows_shift (the luma
+// rows co-sited with chroma rows) writes out + (i >> rows_shift) * stride (samples). None
+// where out is null.
+struct CoSitedRows {
+    uint16_t* out = nullptr;
+    std::ptrdiff_t stride = 0;
+    int rows_shift = 0, first_row = 0;
+
+    uint16_t* row(int r) const {
+        const int i = first_row + r;
+        return out && (i & ((1 << rows_shift) - 1)) == 0 ? out + std::ptrdiff_t(i >> rows_shift) * stride : nullptr;
+    }
 };
 
 // How far below its row the synthesis points the u16 blends' `ahead`: luma rows, chroma rows
@@ -104,6 +125,11 @@ void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow&
 // target's kernel, its constants made once).
 void blend_luma_rows_u8(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
                         int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value);
+// blend_luma_row_u16 of each of rows.count rows, with co_sited's rows made as it says and
+// rows.ahead prefetched.
+void blend_luma_rows_u16(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                         int width, const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                         int max_value, const CoSitedRows& co_sited = {});
 
 // Twins of blend_chroma_row.
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
@@ -113,6 +139,12 @@ void blend_chroma_row_u16(const uint16_t* src, uint16_t* dst, const uint16_t* lu
                           const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
                           const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
                           const uint16_t* ahead = nullptr);
+
+// blend_chroma_row_u16 of each of rows.count rows, rows.ahead prefetched.
+void blend_chroma_rows_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                           const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                           const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                           int bit_depth, int min_value, int max_value);
 
 // blend_chroma_row_u8 of each of rows.count rows, one call for all.
 void blend_chroma_rows_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,

@@ -402,6 +402,12 @@ struct SkippedSteps {
     // samples each, the last one 32 where the AVX2 form took 32) that hold a sample above the
     // bit depth. A step it blended holds samples within the bit depth (out of place) or its
     // output (in place) by now, so it does not count.
+    // Finish for a form that left a step out before where its tail began (tail_begin).
+    void FinishSkipped(int tail_begin) {
+        skipped = true;
+        vector_end = tail_begin;
+        Finish();
+    }
     void Finish() {
         if (!skipped) return;
         for (int x = 0; x < vector_end; x += 64) {
@@ -410,6 +416,14 @@ struct SkippedSteps {
         }
     }
 };
+// A single row for the several-row forms, `ahead` its row to prefetch (or null).
+inline PlaneRows OneRow(const uint16_t* ahead) {
+    PlaneRows one;
+    one.ahead = ahead;
+    one.ahead_count = ahead ? 1 : 0;
+    return one;
+}
+
 template <class Bad, class Scalar>
 SkippedSteps<Bad, Scalar> MakeSkippedSteps(int width, Bad bad, Scalar scalar) {
     return {bad, scalar, width, false, width};
@@ -529,6 +543,13 @@ template <int kSamples>
 HWY_INLINE void PrefetchSourceAhead(const uint16_t* ahead) {
     if (!ahead) return;
     for (int k = 0; k < kSamples; k += 32) __builtin_prefetch(ahead + k, 0, 2);
+}
+
+// A row `r` rows down from `p`, `stride` bytes apart (PlaneRows' strides are in bytes).
+template <typename T>
+HWY_INLINE T* RowDown(T* p, int r, std::ptrdiff_t stride) {
+    using Byte = std::conditional_t<std::is_const_v<T>, const uint8_t, uint8_t>;
+    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(p) + r * stride);
 }
 
 #include "av1/simd/blend_u8_avx512-inl.h"
@@ -886,27 +907,6 @@ void BlendLumaRowU16Generic(const uint16_t* src, uint16_t* dst, const BlockNoise
     BlendLumaScalar(src, dst, noise, vec_end, width, width, scaling, scaling_shift, min_value, max_value);
 }
 
-#if HWY_TARGET == HWY_AVX3
-// 10 bits in whole 512-bit vectors (blend_10bit_avx512-inl.h); the samples after the last
-// whole 64 the generic way, with the seams of their blocks.
-FG_AVX512_VBMI void BlendLumaRowU10Avx512(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                                          const ScalingLookup& scaling, int scaling_shift, int min_value,
-                                          int max_value, const uint16_t* ahead) {
-    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto steps = LumaSkippedSteps(src, dst, row, width, scaling, scaling_shift, min_value, max_value, nullptr);
-    auto rest = [&](int x, const uint32_t* seams) {
-        steps.Tail(x, [&] {
-            BlendLumaRowU16Generic(src + x, dst + x, avx512::RowFrom(row, x, seams), width - x, scaling,
-                                   scaling_shift, 10, min_value, max_value);
-        });
-    };
-    avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-        avx512::Luma10Row<decltype(overlap)::value>(src, dst, row, width, scaling, scaling_shift, min_value,
-                                                    max_value, ahead, steps.skipped, rest);
-    });
-    steps.Finish();
-}
-#endif
 
 // co_sited_luma_row above 8 bits: the pair sums of a multiply-add by ones, halved with
 // rounding by a rounding high multiply by 1 << 14 ((2 * sum + 1) >> 1 of the q15 product).
@@ -946,6 +946,40 @@ void CoSitedLumaRowU16(const uint16_t* luma, int luma_width, int width, uint16_t
 #endif
 }
 
+#if HWY_TARGET == HWY_AVX3
+// 10 bits in whole 512-bit vectors (blend_10bit_avx512-inl.h), rows.count rows in one call;
+// the samples after the last whole 64 of a row the generic way, with the seams of their blocks.
+// The co-sited averages are made from each clean row before its blend, in a pass of their own
+// (made inside the luma steps they measured no faster: docs/performance-notes.md).
+FG_AVX512_VBMI void BlendLumaRowsU10Avx512(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
+                                           const BlockNoiseRow& noise, int width, const ScalingLookup& scaling,
+                                           int scaling_shift, int min_value, int max_value,
+                                           const CoSitedRows& co_sited) {
+    const BlockNoiseRow first = noise;  // local: the stores cannot alias it
+    auto before_row = [&](int r, const uint16_t* s) {
+        if (uint16_t* out = co_sited.row(r)) CoSitedLumaRowU16Unchecked(s, width, (width + 1) / 2, out);  // (exact here)
+    };
+    auto steps_of = [&](int r, const BlockNoiseRow& row) {
+        return LumaSkippedSteps(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), row, width,
+                                scaling, scaling_shift, min_value, max_value, nullptr);
+    };
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        steps_of(r, row).Tail(x, [&] {
+            BlendLumaRowU16Generic(RowDown(src, r, rows.src_stride) + x, RowDown(dst, r, rows.dst_stride) + x,
+                                   avx512::RowFrom(row, x, seams), width - x, scaling, scaling_shift, 10, min_value,
+                                   max_value);
+        });
+    };
+    auto left_out = [&](int r, const BlockNoiseRow& row, int vector_end) {
+        steps_of(r, row).FinishSkipped(vector_end);
+    };
+    avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+        avx512::Luma10Rows<decltype(overlap)::value>(src, dst, rows, first, width, scaling, scaling_shift, min_value,
+                                                     max_value, before_row, rest, left_out);
+    });
+}
+#endif
+
 #if HWY_TARGET == HWY_AVX2
 // 10 bits 64 samples per step in registers (blend_10bit_avx2-inl.h); the samples after the
 // last whole 32 the generic way.
@@ -982,11 +1016,9 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
                                    ahead);
 #endif
 #if HWY_TARGET == HWY_AVX3
-    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi()) {
-        if (co_sited) CoSitedLumaRowU16Unchecked(src, width, (width + 1) / 2, co_sited);  // exact on this target
-        return BlendLumaRowU10Avx512(src, dst, noise, width, scaling, scaling_shift, min_value, max_value,
-                                     ahead);
-    }
+    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
+        return BlendLumaRowsU10Avx512(src, dst, OneRow(ahead), noise, width, scaling, scaling_shift, min_value,
+                                      max_value, CoSitedRows{co_sited});
 #endif
     if (!CheckedRow(
             src == dst, [&] { return AnyAboveBitDepth(src, width, bit_depth); },
@@ -996,6 +1028,24 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
                                        max_value);
             }))
         BlendLumaScalar(src, dst, noise, 0, width, width, scaling, scaling_shift, min_value, max_value, co_sited);
+}
+
+// Row by row where no target form takes several (each row one call of the same target: no
+// dispatch per row).
+void BlendLumaRowsU16(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                      int width, const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                      int max_value, const CoSitedRows& co_sited) {
+#if HWY_TARGET == HWY_AVX3
+    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
+        return BlendLumaRowsU10Avx512(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value,
+                                      co_sited);
+#endif
+    BlockNoiseRow row = noise;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
+        BlendLumaRowU16(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), row, width, scaling,
+                        scaling_shift, bit_depth, min_value, max_value, co_sited.row(r),
+                        r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr);
+    }
 }
 
 // The last chroma column of an odd-width subsampled picture pairs the last luma sample with
@@ -1201,31 +1251,39 @@ void BlendChromaRowU16Generic(const uint16_t* src, uint16_t* dst, const uint16_t
 
 #if HWY_TARGET == HWY_AVX3
 // 10 bits with unsubsampled (or shared co-sited) luma in whole 512-bit vectors
-// (blend_10bit_avx512-inl.h); the samples after the last whole 64 the generic way.
-FG_AVX512_VBMI void BlendChromaRowU10Avx512(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                                            const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
-                                            const ScalingLookup& scaling, int scaling_shift, int min_value,
-                                            int max_value, const uint16_t* ahead) {
-    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto steps = ChromaSkippedSteps(src, dst, luma, luma_width, row, width, index, scaling, scaling_shift, min_value,
-                                    max_value);
-    auto rest = [&](int x, const uint32_t* seams) {
-        steps.Tail(x, [&] {
-            BlendChromaRowU16Generic(src + x, dst + x, luma + x, luma_width - x, avx512::RowFrom(row, x, seams),
-                                     width - x, 0, index, scaling, scaling_shift, 10, min_value, max_value);
+// (blend_10bit_avx512-inl.h), rows.count rows in one call; the samples after the last whole 64
+// of a row the generic way.
+FG_AVX512_VBMI void BlendChromaRowsU10Avx512(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
+                                             int luma_width, const PlaneRows& rows, const BlockNoiseRow& noise,
+                                             int width, const ChromaScalingIndex& index,
+                                             const ScalingLookup& scaling, int scaling_shift, int min_value,
+                                             int max_value) {
+    const BlockNoiseRow first = noise;  // local: the stores cannot alias it
+    auto steps_of = [&](int r, const BlockNoiseRow& row) {
+        return ChromaSkippedSteps(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride),
+                                  RowDown(luma, r, rows.luma_stride), luma_width, row, width, index, scaling,
+                                  scaling_shift, min_value, max_value);
+    };
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, const uint32_t* seams) {
+        steps_of(r, row).Tail(x, [&] {
+            BlendChromaRowU16Generic(RowDown(src, r, rows.src_stride) + x, RowDown(dst, r, rows.dst_stride) + x,
+                                     RowDown(luma, r, rows.luma_stride) + x, luma_width - x,
+                                     avx512::RowFrom(row, x, seams), width - x, 0, index, scaling, scaling_shift,
+                                     10, min_value, max_value);
         });
     };
-    avx512::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+    auto left_out = [&](int r, const BlockNoiseRow& row, int vector_end) {
+        steps_of(r, row).FinishSkipped(vector_end);
+    };
+    avx512::WithFlag(first.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA FG_AVX512_VBMI {
         avx512::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-            avx512::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
-                avx512::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
-                                    decltype(overlap)::value>(src, dst, luma, row, width, index, scaling,
-                                                              scaling_shift, min_value, max_value, ahead,
-                                                              steps.skipped, rest);
+            avx512::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA FG_AVX512_VBMI {
+                avx512::Chroma10Rows<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
+                                     decltype(overlap)::value>(src, dst, luma, rows, first, width, index, scaling,
+                                                               scaling_shift, min_value, max_value, rest, left_out);
             });
         });
     });
-    steps.Finish();
 }
 #endif
 
@@ -1266,8 +1324,8 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
 #if HWY_TARGET == HWY_AVX3
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
         avx512::HasAvx512Vbmi())
-        return BlendChromaRowU10Avx512(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
-                                       min_value, max_value, ahead);
+        return BlendChromaRowsU10Avx512(src, dst, luma, luma_width, OneRow(ahead), noise, width, index, scaling,
+                                        scaling_shift, min_value, max_value);
 #endif
 #if HWY_TARGET == HWY_AVX2
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))
@@ -1284,6 +1342,24 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
             }))
         BlendChromaLookedUp(src, dst, luma, luma_width, noise, 0, width, subsampling_x, index, scaling, scaling_shift,
                             bit_depth, min_value, max_value);
+}
+
+void BlendChromaRowsU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                        const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                        const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                        int bit_depth, int min_value, int max_value) {
+#if HWY_TARGET == HWY_AVX3
+    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
+        avx512::HasAvx512Vbmi())
+        return BlendChromaRowsU10Avx512(src, dst, luma, luma_width, rows, noise, width, index, scaling,
+                                        scaling_shift, min_value, max_value);
+#endif
+    BlockNoiseRow row = noise;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
+        BlendChromaRowU16(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride),
+                          RowDown(luma, r, rows.luma_stride), luma_width, row, width, subsampling_x, index, scaling,
+                          scaling_shift, bit_depth, min_value, max_value,
+                          r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr);
 }
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
@@ -1436,6 +1512,8 @@ HWY_EXPORT(BlendLumaRowsU8);
 HWY_EXPORT(LumaRowsReadByteNoise);
 HWY_EXPORT(BlendChromaRowsU8);
 HWY_EXPORT(BlendChromaRowU16);
+HWY_EXPORT(BlendLumaRowsU16);
+HWY_EXPORT(BlendChromaRowsU16);
 HWY_EXPORT(CrossFadeRow);
 HWY_EXPORT(CoSitedLumaRowU16);
 HWY_EXPORT(AssembleNoiseRow);
@@ -1468,6 +1546,19 @@ void blend_luma_row_u16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow&
                         uint16_t* co_sited, const uint16_t* ahead) {
     HWY_DYNAMIC_DISPATCH(BlendLumaRowU16)(src, dst, noise, width, scaling, scaling_shift, bit_depth, min_value,
                                           max_value, co_sited, ahead);
+}
+void blend_luma_rows_u16(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                         int width, const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                         int max_value, const CoSitedRows& co_sited) {
+    HWY_DYNAMIC_DISPATCH(BlendLumaRowsU16)(src, dst, rows, noise, width, scaling, scaling_shift, bit_depth,
+                                           min_value, max_value, co_sited);
+}
+void blend_chroma_rows_u16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                           const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
+                           const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                           int bit_depth, int min_value, int max_value) {
+    HWY_DYNAMIC_DISPATCH(BlendChromaRowsU16)(src, dst, luma, luma_width, rows, noise, width, subsampling_x, index,
+                                             scaling, scaling_shift, bit_depth, min_value, max_value);
 }
 void blend_chroma_row_u8(const uint8_t* src, uint8_t* dst, const uint8_t* luma, int luma_width,
                          const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
