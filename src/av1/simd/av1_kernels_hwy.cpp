@@ -981,27 +981,31 @@ FG_AVX512_VBMI void BlendLumaRowsU10Avx512(const uint16_t* src, uint16_t* dst, c
 #endif
 
 #if HWY_TARGET == HWY_AVX2
-// 10 bits 64 samples per step in registers (blend_10bit_avx2-inl.h); the samples after the
-// last whole 32 the generic way.
-void BlendLumaRowU10Avx2(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                         const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
-                         uint16_t* co_sited, const uint16_t* ahead) {
-    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto steps = LumaSkippedSteps(src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited);
-    auto rest = [&](int x) {
-        steps.Tail(x, [&] {
-            if (co_sited) CoSitedLumaRowU16Unchecked(src + x, width - x, (width + 1) / 2 - x / 2, co_sited + x / 2);
-            BlendLumaRowU16Generic(src, dst, row, width, scaling, scaling_shift, 10, min_value, max_value, x);
+// 10 bits 64 samples per step in registers (blend_10bit_avx2-inl.h), rows.count rows in one
+// call; the samples after a row's last whole 32 the generic way.
+void BlendLumaRowsU10Avx2(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
+                          int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                          const CoSitedRows& co_sited) {
+    const BlockNoiseRow first = noise;  // local: the stores cannot alias it
+    auto steps_of = [&](int r, const BlockNoiseRow& row) {
+        return LumaSkippedSteps(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), row, width,
+                                scaling, scaling_shift, min_value, max_value, co_sited.row(r));
+    };
+    auto rest = [&](int r, const BlockNoiseRow& row, int x, uint16_t* out) {
+        steps_of(r, row).Tail(x, [&] {
+            const uint16_t* s = RowDown(src, r, rows.src_stride);
+            if (out) CoSitedLumaRowU16Unchecked(s + x, width - x, (width + 1) / 2 - x / 2, out + x / 2);
+            BlendLumaRowU16Generic(s, RowDown(dst, r, rows.dst_stride), row, width, scaling, scaling_shift, 10,
+                                   min_value, max_value, x);
         });
     };
-    avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
-        avx2::WithFlag(co_sited != nullptr, [&](auto with_co_sited) FG_INLINE_LAMBDA {
-            avx2::Luma10Row<decltype(overlap)::value, decltype(with_co_sited)::value>(
-                src, dst, row, width, scaling, scaling_shift, min_value, max_value, co_sited, ahead, steps.skipped,
-                rest);
-        });
+    auto left_out = [&](int r, const BlockNoiseRow& row, int vector_end) {
+        steps_of(r, row).FinishSkipped(vector_end);
+    };
+    avx2::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA {
+        avx2::Luma10Rows<decltype(overlap)::value>(src, dst, rows, first, width, scaling, scaling_shift, min_value,
+                                                   max_value, co_sited, rest, left_out);
     });
-    steps.Finish();
 }
 #endif
 
@@ -1012,8 +1016,8 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
                      uint16_t* co_sited, [[maybe_unused]] const uint16_t* ahead) {
 #if HWY_TARGET == HWY_AVX2
     if (bit_depth == 10 && noise.block_width == 32)
-        return BlendLumaRowU10Avx2(src, dst, noise, width, scaling, scaling_shift, min_value, max_value, co_sited,
-                                   ahead);
+        return BlendLumaRowsU10Avx2(src, dst, OneRow(ahead), noise, width, scaling, scaling_shift, min_value,
+                                    max_value, CoSitedRows{co_sited});
 #endif
 #if HWY_TARGET == HWY_AVX3
     if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
@@ -1039,6 +1043,11 @@ void BlendLumaRowsU16(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
     if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
         return BlendLumaRowsU10Avx512(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value,
                                       co_sited);
+#endif
+#if HWY_TARGET == HWY_AVX2
+    if (bit_depth == 10 && noise.block_width == 32)
+        return BlendLumaRowsU10Avx2(src, dst, rows, noise, width, scaling, scaling_shift, min_value, max_value,
+                                    co_sited);
 #endif
     BlockNoiseRow row = noise;
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
@@ -1289,30 +1298,37 @@ FG_AVX512_VBMI void BlendChromaRowsU10Avx512(const uint16_t* src, uint16_t* dst,
 
 #if HWY_TARGET == HWY_AVX2
 // 10 bits with unsubsampled (or shared co-sited) luma, 64 samples per step in registers
-// (blend_10bit_avx2-inl.h); the samples after the last whole 32 the generic way.
-void BlendChromaRowU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                           const BlockNoiseRow& noise, int width, const ChromaScalingIndex& index,
-                           const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
-                           const uint16_t* ahead) {
-    const BlockNoiseRow row = noise;  // local: the stores cannot alias it
-    auto steps = ChromaSkippedSteps(src, dst, luma, luma_width, row, width, index, scaling, scaling_shift, min_value,
-                                    max_value);
-    auto rest = [&](int x) {
-        steps.Tail(x, [&] {
-            BlendChromaRowU16Generic(src, dst, luma, luma_width, row, width, 0, index, scaling, scaling_shift, 10,
-                                     min_value, max_value, x);
+// (blend_10bit_avx2-inl.h), rows.count rows in one call; the samples after a row's last whole
+// 32 the generic way.
+void BlendChromaRowsU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                            const PlaneRows& rows, const BlockNoiseRow& noise, int width,
+                            const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                            int min_value, int max_value) {
+    const BlockNoiseRow first = noise;  // local: the stores cannot alias it
+    auto steps_of = [&](int r, const BlockNoiseRow& row) {
+        return ChromaSkippedSteps(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride),
+                                  RowDown(luma, r, rows.luma_stride), luma_width, row, width, index, scaling,
+                                  scaling_shift, min_value, max_value);
+    };
+    auto rest = [&](int r, const BlockNoiseRow& row, int x) {
+        steps_of(r, row).Tail(x, [&] {
+            BlendChromaRowU16Generic(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride),
+                                     RowDown(luma, r, rows.luma_stride), luma_width, row, width, 0, index, scaling,
+                                     scaling_shift, 10, min_value, max_value, x);
         });
     };
-    avx2::WithFlag(row.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA {
+    auto left_out = [&](int r, const BlockNoiseRow& row, int vector_end) {
+        steps_of(r, row).FinishSkipped(vector_end);
+    };
+    avx2::WithFlag(first.block_width == 16, [&](auto narrow) FG_INLINE_LAMBDA {
         avx2::WithFlag(index.from_luma, [&](auto from_luma) FG_INLINE_LAMBDA {
-            avx2::WithOverlap(row, [&](auto overlap) FG_INLINE_LAMBDA {
-                avx2::Chroma10Row<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
-                                  decltype(overlap)::value>(src, dst, luma, row, width, index, scaling, scaling_shift,
-                                                            min_value, max_value, ahead, steps.skipped, rest);
+            avx2::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA {
+                avx2::Chroma10Rows<decltype(narrow)::value ? 16 : 32, decltype(from_luma)::value,
+                                   decltype(overlap)::value>(src, dst, luma, rows, first, width, index, scaling,
+                                                             scaling_shift, min_value, max_value, rest, left_out);
             });
         });
     });
-    steps.Finish();
 }
 #endif
 
@@ -1329,8 +1345,8 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
 #endif
 #if HWY_TARGET == HWY_AVX2
     if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))
-        return BlendChromaRowU10Avx2(src, dst, luma, luma_width, noise, width, index, scaling, scaling_shift,
-                                     min_value, max_value, ahead);
+        return BlendChromaRowsU10Avx2(src, dst, luma, luma_width, OneRow(ahead), noise, width, index, scaling,
+                                      scaling_shift, min_value, max_value);
 #endif
     const int luma_read = std::min(luma_width, width << subsampling_x);
     if (!CheckedRow(
@@ -1353,6 +1369,11 @@ void BlendChromaRowsU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma
         avx512::HasAvx512Vbmi())
         return BlendChromaRowsU10Avx512(src, dst, luma, luma_width, rows, noise, width, index, scaling,
                                         scaling_shift, min_value, max_value);
+#endif
+#if HWY_TARGET == HWY_AVX2
+    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))
+        return BlendChromaRowsU10Avx2(src, dst, luma, luma_width, rows, noise, width, index, scaling,
+                                      scaling_shift, min_value, max_value);
 #endif
     BlockNoiseRow row = noise;
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)

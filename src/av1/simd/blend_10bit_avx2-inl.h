@@ -177,18 +177,34 @@ HWY_INLINE void BlendStep10(const StepConstants& fade, const Step10Constants& c,
     for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
 }
 
-// blend_luma_row at 10 bits: the samples, clamped to the table, are their own indices. With
-// kCoSited, also co_sited_luma_row of the clean samples into co_sited (CoSitedLumaRowU16's
-// arithmetic: pair sums by a multiply-add with ones, halved with rounding by a rounding high
-// multiply by 1 << 14). `rest(x)` takes the samples after the last whole 32; `skipped`: a
-// step holding a sample above 10 bits was left out, co-sited luma included; `ahead`:
-// PrefetchSourceAhead's row.
+// Drives rows.count rows of a 10-bit form with what they share made once, as the AVX-512
+// twins' ForEachRow10 (called row by row, each row paid its call, its set-up and its overlap
+// dispatch again). For each row r: row_steps(r, row, s, d, ahead, skipped) runs the row's steps
+// and returns where its tail began; left_out(r, row, vector_end) then blends the steps it left
+// out (AnyAbove10Bits).
+template <class RowSteps, class LeftOut>
+HWY_INLINE void ForEachRow10(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
+                             const BlockNoiseRow& first_row, RowSteps&& row_steps, LeftOut&& left_out) {
+    BlockNoiseRow row = first_row;
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
+        const uint16_t* ahead = r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr;
+        bool skipped = false;
+        const int vector_end =
+            row_steps(r, row, RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), ahead, skipped);
+        if (skipped) left_out(r, row, vector_end);
+    }
+}
+
+// One row of blend_luma_row at 10 bits: the samples, clamped to the table, are their own
+// indices. With kCoSited, also co_sited_luma_row of the clean samples into co_sited
+// (CoSitedLumaRowU16's arithmetic: pair sums by a multiply-add with ones, halved with rounding
+// by a rounding high multiply by 1 << 14). `rest(x)` takes the samples after the last whole
+// 32; `skipped`: a step holding a sample above 10 bits was left out, co-sited luma included;
+// `ahead`: PrefetchSourceAhead's row.
 template <Overlap kOverlap, bool kCoSited, class Rest>
-void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int width, const ScalingLookup& scaling,
-               int scaling_shift, int min_value, int max_value, uint16_t* co_sited, const uint16_t* ahead,
-               bool& skipped, Rest&& rest) {
-    const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
-    const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
+HWY_INLINE void Luma10RowSteps(const StepConstants& fade, const Step10Constants& c, const uint16_t* src,
+                               uint16_t* dst, const BlockNoiseRow& row, int width, uint16_t* co_sited,
+                               const uint16_t* ahead, bool& skipped, Rest&& rest) {
     ForEachStep(
         width, width,
         [&](int x, auto samples) FG_INLINE_LAMBDA {
@@ -220,18 +236,46 @@ void Luma10Row(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& row, int
         rest);
 }
 
+// blend_luma_row at 10 bits for rows.count rows (PlaneRows), each row's co-sited luma where
+// co_sited.row(r) gives one; `rest(r, row, x, co_sited_row)` takes a row's samples after the
+// last whole 32, `left_out(r, row, vector_end)` as ForEachRow10.
+template <Overlap kOverlap, class Rest, class LeftOut>
+void Luma10Rows(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const BlockNoiseRow& first_row,
+                int width, const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
+                const CoSitedRows& co_sited, Rest&& rest, LeftOut&& left_out) {
+    const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, first_row);
+    const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
+    auto row_steps = [&](int r, const BlockNoiseRow& row, const uint16_t* s, uint16_t* d, const uint16_t* ahead,
+                         bool& skipped) FG_INLINE_LAMBDA {
+        uint16_t* out = co_sited.row(r);
+        int vector_end = width;
+        auto row_rest = [&](int x) {
+            vector_end = x;
+            rest(r, row, x, out);
+        };
+        if (out)
+            Luma10RowSteps<kOverlap, true>(fade, c, s, d, row, width, out, ahead, skipped, row_rest);
+        else
+            Luma10RowSteps<kOverlap, false>(fade, c, s, d, row, width, nullptr, ahead, skipped, row_rest);
+        return vector_end;
+    };
+    ForEachRow10(src, dst, rows, first_row, row_steps, left_out);
+}
+
 // blend_chroma_row at 10 bits with unsubsampled luma (the synthesis hands subsampled chroma
-// its shared co-sited luma rows so). The index of chroma_scaling_index is the luma itself
-// (clamped) or (luma * luma_mult + chroma * mult) >> 6 plus the offset, clipped: one
-// multiply-add of interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits), whose
-// pack back to 16 bits restores the order the in-lane interleave split. `rest(x)` blends the
-// samples after the last whole 32; `skipped`: a step whose chroma or luma holds a sample above
-// 10 bits was left out; `ahead`: PrefetchSourceAhead's row.
-template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest>
-void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const BlockNoiseRow& row, int width,
-                 const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift, int min_value,
-                 int max_value, const uint16_t* ahead, bool& skipped, Rest&& rest) {
-    const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, row);
+// its shared co-sited luma rows so) for rows.count rows, row r's luma at
+// luma + r * rows.luma_stride. The index of chroma_scaling_index is the luma itself (clamped)
+// or (luma * luma_mult + chroma * mult) >> 6 plus the offset, clipped: one multiply-add of
+// interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits), whose pack back to
+// 16 bits restores the order the in-lane interleave split. `rest(r, row, x)` blends a row's
+// samples after the last whole 32; a step whose chroma or luma holds a sample above 10 bits
+// is left out, for `left_out` (ForEachRow10).
+template <int kBlockWidth, bool kFromLuma, Overlap kOverlap, class Rest, class LeftOut>
+void Chroma10Rows(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const PlaneRows& rows,
+                  const BlockNoiseRow& first_row, int width, const ChromaScalingIndex& index,
+                  const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value, Rest&& rest,
+                  LeftOut&& left_out) {
+    const StepConstants fade = MakeStepConstants(scaling, scaling_shift, min_value, max_value, first_row);
     const Step10Constants c = MakeStep10Constants(scaling, scaling_shift, min_value, max_value);
     const __m256i mults =
         _mm256_set1_epi32(int32_t(uint32_t(uint16_t(index.luma_mult)) | uint32_t(uint16_t(index.mult)) << 16));
@@ -243,26 +287,36 @@ void Chroma10Row(const uint16_t* src, uint16_t* dst, const uint16_t* luma, const
         const __m256i m = _mm256_adds_epi16(_mm256_packs_epi32(lo, hi), offset);
         return _mm256_min_epi16(_mm256_max_epi16(m, zero), c.last);
     };
-    ForEachStep(
-        width, width,
-        [&](int x, auto samples) FG_INLINE_LAMBDA {
-            constexpr int kVectors = decltype(samples)::value / 16;
-            PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
-            __m256i v[kVectors], idx[kVectors];
-            __m256i any = _mm256_setzero_si256();
-            for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
-                v[g] = Load256(src + x + 16 * g);
-                const __m256i l = Load256(luma + x + 16 * g);
-                any = _mm256_or_si256(any, _mm256_or_si256(v[g], l));
-                idx[g] = kFromLuma ? _mm256_min_epu16(l, c.last) : merged(l, v[g]);
-            }
-            if (AnyAbove10Bits(any)) {
-                skipped = true;
-                return;
-            }
-            BlendStep10<kBlockWidth, kOverlap>(fade, c, row, x, v, idx, dst);
-        },
-        rest);
+    auto row_steps = [&](int r, const BlockNoiseRow& row, const uint16_t* s, uint16_t* d, const uint16_t* ahead,
+                         bool& skipped) FG_INLINE_LAMBDA {
+        const uint16_t* l = RowDown(luma, r, rows.luma_stride);
+        int vector_end = width;
+        ForEachStep(
+            width, width,
+            [&](int x, auto samples) FG_INLINE_LAMBDA {
+                constexpr int kVectors = decltype(samples)::value / 16;
+                PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
+                __m256i v[kVectors], idx[kVectors];
+                __m256i any = _mm256_setzero_si256();
+                for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
+                    v[g] = Load256(s + x + 16 * g);
+                    const __m256i lv = Load256(l + x + 16 * g);
+                    any = _mm256_or_si256(any, _mm256_or_si256(v[g], lv));
+                    idx[g] = kFromLuma ? _mm256_min_epu16(lv, c.last) : merged(lv, v[g]);
+                }
+                if (AnyAbove10Bits(any)) {
+                    skipped = true;
+                    return;
+                }
+                BlendStep10<kBlockWidth, kOverlap>(fade, c, row, x, v, idx, d);
+            },
+            [&](int x) {
+                vector_end = x;
+                rest(r, row, x);
+            });
+        return vector_end;
+    };
+    ForEachRow10(src, dst, rows, first_row, row_steps, left_out);
 }
 
 }  // namespace avx2
