@@ -195,6 +195,34 @@ HWY_INLINE void ForEachRow10(const uint16_t* src, uint16_t* dst, const PlaneRows
     }
 }
 
+// How many vectors a step's array holds.
+template <int kVectors>
+constexpr int VectorsOf(const __m256i (&)[kVectors]) {
+    return kVectors;
+}
+
+// The steps of a 10-bit row (ForEachStep, 64 samples then 32): load(x, v, index) loads a
+// step's samples and scaling indices, all before the first store (in place), and returns the
+// OR of every sample it read; a step holding one above 10 bits is left out and sets `skipped`
+// (AnyAbove10Bits), the others go to blend(x, v, index). `ahead`: PrefetchSourceAhead's row.
+template <class Load, class Blend, class Rest>
+HWY_INLINE void ForEachStep10(int width, const uint16_t* ahead, bool& skipped, Load&& load, Blend&& blend,
+                              Rest&& rest) {
+    ForEachStep(
+        width, width,
+        [&](int x, auto samples) FG_INLINE_LAMBDA {
+            constexpr int kVectors = decltype(samples)::value / 16;
+            PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
+            __m256i v[kVectors], index[kVectors];
+            if (AnyAbove10Bits(load(x, v, index))) {
+                skipped = true;
+                return;
+            }
+            blend(x, v, index);
+        },
+        rest);
+}
+
 // One row of blend_luma_row at 10 bits: the samples, clamped to the table, are their own
 // indices. With kCoSited, also co_sited_luma_row of the clean samples into co_sited
 // (CoSitedLumaRowU16's arithmetic: pair sums by a multiply-add with ones, halved with rounding
@@ -205,26 +233,22 @@ template <Overlap kOverlap, bool kCoSited, class Rest>
 HWY_INLINE void Luma10RowSteps(const StepConstants& fade, const Step10Constants& c, const uint16_t* src,
                                uint16_t* dst, const BlockNoiseRow& row, int width, uint16_t* co_sited,
                                const uint16_t* ahead, bool& skipped, Rest&& rest) {
-    ForEachStep(
-        width, width,
-        [&](int x, auto samples) FG_INLINE_LAMBDA {
-            constexpr int kVectors = decltype(samples)::value / 16;
-            PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
-            __m256i v[kVectors], index[kVectors];
+    ForEachStep10(
+        width, ahead, skipped,
+        [&](int x, auto& v, auto& index) FG_INLINE_LAMBDA {
             __m256i any = _mm256_setzero_si256();
-            for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
+            for (int g = 0; g < VectorsOf(v); ++g) {
                 v[g] = Load256(src + x + 16 * g);
                 index[g] = _mm256_min_epu16(v[g], c.last);
                 any = _mm256_or_si256(any, v[g]);
             }
-            if (AnyAbove10Bits(any)) {
-                skipped = true;
-                return;
-            }
+            return any;
+        },
+        [&](int x, const auto& v, const auto& index) FG_INLINE_LAMBDA {
             if constexpr (kCoSited) {
                 // (sums of two samples below 2^15 fit int16)
                 const __m256i ones = _mm256_set1_epi16(1), half = _mm256_set1_epi16(1 << 14);
-                for (int g = 0; g < kVectors; g += 2) {
+                for (int g = 0; g < VectorsOf(v); g += 2) {
                     const __m256i sums =
                         _mm256_packs_epi32(_mm256_madd_epi16(v[g], ones), _mm256_madd_epi16(v[g + 1], ones));
                     _mm256_storeu_si256(reinterpret_cast<__m256i*>(co_sited + x / 2 + 8 * g),
@@ -291,23 +315,19 @@ void Chroma10Rows(const uint16_t* src, uint16_t* dst, const uint16_t* luma, cons
                          bool& skipped) FG_INLINE_LAMBDA {
         const uint16_t* l = RowDown(luma, r, rows.luma_stride);
         int vector_end = width;
-        ForEachStep(
-            width, width,
-            [&](int x, auto samples) FG_INLINE_LAMBDA {
-                constexpr int kVectors = decltype(samples)::value / 16;
-                PrefetchSourceAhead<16 * kVectors>(ahead ? ahead + x : nullptr);
-                __m256i v[kVectors], idx[kVectors];
+        ForEachStep10(
+            width, ahead, skipped,
+            [&](int x, auto& v, auto& idx) FG_INLINE_LAMBDA {
                 __m256i any = _mm256_setzero_si256();
-                for (int g = 0; g < kVectors; ++g) {  // all loads before the first store: in place
+                for (int g = 0; g < VectorsOf(v); ++g) {
                     v[g] = Load256(s + x + 16 * g);
                     const __m256i lv = Load256(l + x + 16 * g);
                     any = _mm256_or_si256(any, _mm256_or_si256(v[g], lv));
                     idx[g] = kFromLuma ? _mm256_min_epu16(lv, c.last) : merged(lv, v[g]);
                 }
-                if (AnyAbove10Bits(any)) {
-                    skipped = true;
-                    return;
-                }
+                return any;
+            },
+            [&](int x, const auto& v, const auto& idx) FG_INLINE_LAMBDA {
                 BlendStep10<kBlockWidth, kOverlap>(fade, c, row, x, v, idx, d);
             },
             [&](int x) {
