@@ -69,6 +69,15 @@ struct TemplateNoise {
         }
         for (int x = 0; x < width; x++) flat.push_back(row.at(x));
     }
+
+    // `flat` of the row r rows below `row` (the rows of a stripe, for the one-row references)
+    std::vector<int16_t> flat_below(int r) const {
+        av1::simd::BlockNoiseRow below = row;
+        below.row_offset += std::ptrdiff_t(r) * pitch;
+        std::vector<int16_t> out;
+        for (int x = 0; x < int(flat.size()); x++) out.push_back(below.at(x));
+        return out;
+    }
 };
 
 av1::ScalingLookup random_scaling(std::mt19937& rng, int bd) {
@@ -262,16 +271,9 @@ TEST_P(SimdAv1BlendRowsEquivalence, EightBitRowsOfAStripe) {
         // the luma rows co-sited with the chroma rows: every one, or every other (4:2:0)
         const int luma_step = uniform(0, 1) + 1;
         const int chroma_rows = (rows + luma_step - 1) / luma_step;
-        auto noise_of = [](const TemplateNoise& t, int r) {
-            av1::simd::BlockNoiseRow row = t.row;
-            row.row_offset += std::ptrdiff_t(r) * t.pitch;
-            std::vector<int16_t> flat;
-            for (int x = 0; x < int(t.flat.size()); x++) flat.push_back(row.at(x));
-            return flat;
-        };
         for (int r = 0; r < rows; r++)
             av1::blend_luma_row<uint8_t>(luma.data() + r * luma_stride, want.data() + r * got_stride,
-                                         noise_of(luma_noise, r).data(), luma_width, scaling, shift, clip.min_value,
+                                         luma_noise.flat_below(r).data(), luma_width, scaling, shift, clip.min_value,
                                          clip.max_luma);
         const av1::simd::PlaneRows luma_rows{rows, luma_stride, got_stride, 0, luma_noise.pitch};
         av1::simd::blend_luma_rows_u8(luma.data(), got.data(), luma_rows, luma_noise.row, luma_width, scaling, shift,
@@ -280,7 +282,7 @@ TEST_P(SimdAv1BlendRowsEquivalence, EightBitRowsOfAStripe) {
         for (int r = 0; r < chroma_rows; r++)
             av1::blend_chroma_row<uint8_t>(chroma.data() + r * chroma_stride, want.data() + r * got_stride,
                                            luma.data() + r * luma_step * luma_stride, luma_width,
-                                           noise_of(chroma_noise, r).data(), chroma_width, subx, index, scaling, shift,
+                                           chroma_noise.flat_below(r).data(), chroma_width, subx, index, scaling, shift,
                                            8, clip.min_value, clip.max_chroma);
         const av1::simd::PlaneRows chroma_rows_of{chroma_rows, chroma_stride, got_stride, std::ptrdiff_t(luma_step) * luma_stride,
                                                   chroma_noise.pitch};
@@ -326,13 +328,6 @@ TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRowsOfAStripe) {
             }
         const int got_stride = luma_stride + uniform(0, 40);
         std::vector<uint16_t> want(std::size_t(got_stride) * std::size_t(rows), uint16_t(7)), got = want;
-        auto noise_of = [](const TemplateNoise& t, int r) {
-            av1::simd::BlockNoiseRow row = t.row;
-            row.row_offset += std::ptrdiff_t(r) * t.pitch;
-            std::vector<int16_t> flat;
-            for (int x = 0; x < int(t.flat.size()); x++) flat.push_back(row.at(x));
-            return flat;
-        };
         // the rows' prefetch: none, or for the first ahead_count rows (the output must not depend on it)
         auto with_ahead = [&](av1::simd::PlaneRows r, const std::vector<uint16_t>& source) {
             if (uniform(0, 1)) r.ahead = source.data(), r.ahead_count = uniform(0, r.count);
@@ -346,7 +341,7 @@ TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRowsOfAStripe) {
         const bool in_place = uniform(0, 1);
         for (int r = 0; r < rows; r++) {
             av1::blend_luma_row<uint16_t>(luma.data() + r * luma_stride, want.data() + r * got_stride,
-                                          noise_of(luma_noise, r).data(), luma_width, scaling, shift, clip.min_value,
+                                          luma_noise.flat_below(r).data(), luma_width, scaling, shift, clip.min_value,
                                           clip.max_luma);
             const int i = first_row + r;
             if (i % (1 << rows_shift) == 0)
@@ -394,7 +389,7 @@ TEST_P(SimdAv1BlendRowsEquivalence, HighBitDepthRowsOfAStripe) {
         for (int r = 0; r < rows; r++)
             av1::blend_chroma_row<uint16_t>(chroma_src.data() + r * chroma_src_stride, want.data() + r * got_stride,
                                             chroma_luma + r * chroma_luma_stride, chroma_luma_width,
-                                            noise_of(noise, r).data(), chroma_w, chroma_subx, index, scaling, shift,
+                                            noise.flat_below(r).data(), chroma_w, chroma_subx, index, scaling, shift,
                                             bd, clip.min_value, clip.max_chroma);
         const av1::simd::PlaneRows chroma_rows = with_ahead(
             {rows, chroma_src_stride * 2, got_stride * 2, chroma_luma_stride * 2, noise.pitch}, chroma_src);
