@@ -1009,21 +1009,12 @@ void BlendLumaRowsU10Avx2(const uint16_t* src, uint16_t* dst, const PlaneRows& r
 }
 #endif
 
-// The 10-bit forms check each step as they read it; the generic ones are checked by the row
-// (CheckedRow), which is made again the scalar way where it holds a sample above the bit depth.
-void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
-                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
-                     uint16_t* co_sited, [[maybe_unused]] const uint16_t* ahead) {
-#if HWY_TARGET == HWY_AVX2
-    if (bit_depth == 10 && noise.block_width == 32)
-        return BlendLumaRowsU10Avx2(src, dst, OneRow(ahead), noise, width, scaling, scaling_shift, min_value,
-                                    max_value, CoSitedRows{co_sited});
-#endif
-#if HWY_TARGET == HWY_AVX3
-    if (bit_depth == 10 && noise.block_width == 32 && avx512::HasAvx512Vbmi())
-        return BlendLumaRowsU10Avx512(src, dst, OneRow(ahead), noise, width, scaling, scaling_shift, min_value,
-                                      max_value, CoSitedRows{co_sited});
-#endif
+// A row of the generic forms, checked by the row (CheckedRow): made again the scalar way where
+// it holds a sample above the bit depth. (The 10-bit target forms check each step as they
+// read it.)
+void BlendLumaRowU16Checked(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                            const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
+                            int max_value, uint16_t* co_sited) {
     if (!CheckedRow(
             src == dst, [&] { return AnyAboveBitDepth(src, width, bit_depth); },
             [&] {
@@ -1034,8 +1025,8 @@ void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& no
         BlendLumaScalar(src, dst, noise, 0, width, width, scaling, scaling_shift, min_value, max_value, co_sited);
 }
 
-// Row by row where no target form takes several (each row one call of the same target: no
-// dispatch per row).
+// The one place that picks a target's 10-bit form (a stripe's rows in one call); where none
+// applies, row by row in the same target (no dispatch per row).
 void BlendLumaRowsU16(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const BlockNoiseRow& noise,
                       int width, const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value,
                       int max_value, const CoSitedRows& co_sited) {
@@ -1050,11 +1041,17 @@ void BlendLumaRowsU16(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
                                     co_sited);
 #endif
     BlockNoiseRow row = noise;
-    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
-        BlendLumaRowU16(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), row, width, scaling,
-                        scaling_shift, bit_depth, min_value, max_value, co_sited.row(r),
-                        r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr);
-    }
+    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
+        BlendLumaRowU16Checked(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), row, width,
+                               scaling, scaling_shift, bit_depth, min_value, max_value, co_sited.row(r));
+}
+
+// One row: the rows form with one row (the generic forms do not prefetch).
+void BlendLumaRowU16(const uint16_t* src, uint16_t* dst, const BlockNoiseRow& noise, int width,
+                     const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                     uint16_t* co_sited, const uint16_t* ahead) {
+    BlendLumaRowsU16(src, dst, OneRow(ahead), noise, width, scaling, scaling_shift, bit_depth, min_value, max_value,
+                     CoSitedRows{co_sited});
 }
 
 // The last chroma column of an odd-width subsampled picture pairs the last luma sample with
@@ -1332,22 +1329,11 @@ void BlendChromaRowsU10Avx2(const uint16_t* src, uint16_t* dst, const uint16_t* 
 }
 #endif
 
-// As BlendLumaRowU16: the 10-bit forms check their steps, the generic ones the row.
-void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
-                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
-                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
-                       [[maybe_unused]] const uint16_t* ahead) {
-#if HWY_TARGET == HWY_AVX3
-    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32) &&
-        avx512::HasAvx512Vbmi())
-        return BlendChromaRowsU10Avx512(src, dst, luma, luma_width, OneRow(ahead), noise, width, index, scaling,
-                                        scaling_shift, min_value, max_value);
-#endif
-#if HWY_TARGET == HWY_AVX2
-    if (bit_depth == 10 && subsampling_x == 0 && (noise.block_width == 16 || noise.block_width == 32))
-        return BlendChromaRowsU10Avx2(src, dst, luma, luma_width, OneRow(ahead), noise, width, index, scaling,
-                                      scaling_shift, min_value, max_value);
-#endif
+// As BlendLumaRowU16Checked.
+void BlendChromaRowU16Checked(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                              const BlockNoiseRow& noise, int width, int subsampling_x,
+                              const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
+                              int bit_depth, int min_value, int max_value) {
     const int luma_read = std::min(luma_width, width << subsampling_x);
     if (!CheckedRow(
             src == dst,
@@ -1360,6 +1346,7 @@ void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma,
                             bit_depth, min_value, max_value);
 }
 
+// As BlendLumaRowsU16: the one place that picks a target's 10-bit form.
 void BlendChromaRowsU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
                         const PlaneRows& rows, const BlockNoiseRow& noise, int width, int subsampling_x,
                         const ChromaScalingIndex& index, const ScalingLookup& scaling, int scaling_shift,
@@ -1377,10 +1364,17 @@ void BlendChromaRowsU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma
 #endif
     BlockNoiseRow row = noise;
     for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step)
-        BlendChromaRowU16(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride),
-                          RowDown(luma, r, rows.luma_stride), luma_width, row, width, subsampling_x, index, scaling,
-                          scaling_shift, bit_depth, min_value, max_value,
-                          r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr);
+        BlendChromaRowU16Checked(RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride),
+                                 RowDown(luma, r, rows.luma_stride), luma_width, row, width, subsampling_x, index,
+                                 scaling, scaling_shift, bit_depth, min_value, max_value);
+}
+
+void BlendChromaRowU16(const uint16_t* src, uint16_t* dst, const uint16_t* luma, int luma_width,
+                       const BlockNoiseRow& noise, int width, int subsampling_x, const ChromaScalingIndex& index,
+                       const ScalingLookup& scaling, int scaling_shift, int bit_depth, int min_value, int max_value,
+                       const uint16_t* ahead) {
+    BlendChromaRowsU16(src, dst, luma, luma_width, OneRow(ahead), noise, width, subsampling_x, index, scaling,
+                       scaling_shift, bit_depth, min_value, max_value);
 }
 
 // A row's noise written out flat (the rows a stripe shares with the one above, which are
