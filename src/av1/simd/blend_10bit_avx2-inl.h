@@ -177,24 +177,6 @@ HWY_INLINE void BlendStep10(const StepConstants& fade, const Step10Constants& c,
     for (int g = 0; g < kVectors; ++g) StoreBlended10(c, dst + x + 16 * g, v[g], scale[g], noise[g]);
 }
 
-// Drives rows.count rows of a 10-bit form with what they share made once, as the AVX-512
-// twins' ForEachRow10 (called row by row, each row paid its call, its set-up and its overlap
-// dispatch again). For each row r: row_steps(r, row, s, d, ahead, skipped) runs the row's steps
-// and returns where its tail began; left_out(r, row, vector_end) then blends the steps it left
-// out (AnyAbove10Bits).
-template <class RowSteps, class LeftOut>
-HWY_INLINE void ForEachRow10(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
-                             const BlockNoiseRow& first_row, RowSteps&& row_steps, LeftOut&& left_out) {
-    BlockNoiseRow row = first_row;
-    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
-        const uint16_t* ahead = r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr;
-        bool skipped = false;
-        const int vector_end =
-            row_steps(r, row, RowDown(src, r, rows.src_stride), RowDown(dst, r, rows.dst_stride), ahead, skipped);
-        if (skipped) left_out(r, row, vector_end);
-    }
-}
-
 // How many vectors a step's array holds.
 template <int kVectors>
 constexpr int VectorsOf(const __m256i (&)[kVectors]) {

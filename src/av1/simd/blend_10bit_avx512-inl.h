@@ -66,65 +66,80 @@ FG_AVX512_VBMI inline void StoreBlended(uint16_t* dst, __m512i src, __m512i scal
     _mm512_storeu_si512(dst, _mm512_min_epi16(_mm512_max_epi16(v, vmin), vmax));
 }
 
-// Drives rows.count rows of a 10-bit form, with what they share made once (as the 8-bit
-// LumaRows: called row by row, the per-row set-up, the dispatch and the tail bookkeeping were
-// about a tenth of the 10-bit synthesis). For each row r: row_step(r, row, s, d, ahead) runs
-// the row's steps (`s`, `d` its source and output, `ahead` PrefetchSourceAhead's row or null)
-// and returns where its tail began and whether it left a step out (AnyAbove10Bits);
-// left_out(r, row, vector_end) then blends those.
-template <class RowSteps, class LeftOut>
-FG_AVX512_VBMI inline void ForEachRow10(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
-                                        const BlockNoiseRow& first_row, RowSteps&& row_steps, LeftOut&& left_out) {
-    BlockNoiseRow row = first_row;
-    for (int r = 0; r < rows.count; ++r, row.row_offset += rows.noise_step) {
-        const uint16_t* s = RowDown(src, r, rows.src_stride);
-        const uint16_t* ahead = r < rows.ahead_count ? RowDown(rows.ahead, r, rows.src_stride) : nullptr;
-        bool skipped = false;
-        const int vector_end = row_steps(r, row, s, RowDown(dst, r, rows.dst_stride), ahead, skipped);
-        if (skipped) left_out(r, row, vector_end);
-    }
+// What every step of a 10-bit form's rows shares, made once for the rows, in registers.
+struct Blend10Constants {
+    InterpolationLut lut;
+    SeamFade fade;
+    __m128i up_shift;
+    __m512i vmin, vmax;
+};
+FG_AVX512_VBMI inline Blend10Constants MakeBlend10Constants(const ScalingLookup& scaling, int scaling_shift,
+                                                            int min_value, int max_value,
+                                                            const BlockNoiseRow& first_row) {
+    return {LoadInterpolationLut(scaling), MakeSeamFade(first_row), _mm_cvtsi32_si128(15 - scaling_shift),
+            _mm512_set1_epi16(int16_t(min_value)), _mm512_set1_epi16(int16_t(max_value))};
 }
 
-// Twin of blend_luma_row at 10 bits for rows.count rows (PlaneRows): before_row(r, s) first
-// (the co-sited averages of the clean row), `rest(r, row, x, seams)` blends samples
-// [x, width) of row r the generic way, `left_out` as ForEachRow10. Sample order (samples 0-31,
-// 32-63 of the step in 16-bit lanes): the pack that makes the byte indices interleaves the
-// 128-bit lanes, and unpacking the looked-up bytes undoes it.
+// The 64-sample steps of a 10-bit row (ForEach64 over kBlockWidth-wide blocks). load(x, s_low,
+// s_high, i_low, i_high) loads a step's samples and their scaling indices, all before the
+// step's first store (in place), and returns the OR of every sample it read: a step holding one
+// above 10 bits writes nothing and sets `skipped` (AnyAbove10Bits). `rest(x, seams)` as
+// ForEach64's. Sample order (samples 0-31, 32-63 of the step in 16-bit lanes): the pack that
+// makes the byte indices interleaves the 128-bit lanes, and unpacking the looked-up bytes
+// undoes it.
+template <int kBlockWidth, Overlap kOverlap, class Load, class Rest>
+FG_AVX512_VBMI inline void ForEachStep10(const Blend10Constants& c, const BlockNoiseRow& row, int width,
+                                         uint16_t* d, const uint16_t* ahead, bool& skipped, Load&& load,
+                                         Rest&& rest) {
+    ForEach64<kBlockWidth, kOverlap>(
+        row, width, width,
+        [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
+            PrefetchSourceAhead<64>(ahead ? ahead + x : nullptr);
+            __m512i s_low, s_high, i_low, i_high;
+            if (AnyAbove10Bits(load(x, s_low, s_high, i_low, i_high))) {
+                skipped = true;
+                return;
+            }
+            __m512i noise_low, noise_high;
+            NoiseOf64<kBlockWidth, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
+            if constexpr (kOverlap == Overlap::kFade) {
+                // (|noise| <= 512 at 10 bits: the fade's sums still fit 16-bit lanes)
+                if constexpr (kBlockWidth == 16) {
+                    FadeFourBlocks(blocks, x == 0, c.fade, noise_low, noise_high);
+                } else {
+                    noise_low =
+                        FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, c.fade);
+                    noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, c.fade);
+                }
+            }
+            __m512i scale_low, scale_high;
+            Scales10(c.lut, i_low, i_high, c.up_shift, scale_low, scale_high);
+            StoreBlended(d + x, s_low, scale_low, noise_low, c.vmin, c.vmax);
+            StoreBlended(d + x + 32, s_high, scale_high, noise_high, c.vmin, c.vmax);
+        },
+        rest);
+}
+
+// Twin of blend_luma_row at 10 bits for rows.count rows (PlaneRows): the samples are their own
+// scaling indices. before_row(r, s) first (the co-sited averages of the clean row),
+// `rest(r, row, x, seams)` blends samples [x, width) of row r the generic way, `left_out` as
+// ForEachRow10.
 template <Overlap kOverlap, class BeforeRow, class Rest, class LeftOut>
 FG_AVX512_VBMI void Luma10Rows(const uint16_t* src, uint16_t* dst, const PlaneRows& rows,
                                const BlockNoiseRow& first_row, int width, const ScalingLookup& scaling,
                                int scaling_shift, int min_value, int max_value, BeforeRow&& before_row, Rest&& rest,
                                LeftOut&& left_out) {
-    // made once for the rows, in registers
-    const InterpolationLut lut = LoadInterpolationLut(scaling);
-    const SeamFade fade = MakeSeamFade(first_row);
-    const __m128i up_shift = _mm_cvtsi32_si128(15 - scaling_shift);
-    const __m512i vmin = _mm512_set1_epi16(int16_t(min_value)), vmax = _mm512_set1_epi16(int16_t(max_value));
+    const Blend10Constants c = MakeBlend10Constants(scaling, scaling_shift, min_value, max_value, first_row);
     auto row_steps = [&](int r, const BlockNoiseRow& row, const uint16_t* s, uint16_t* d, const uint16_t* ahead,
                          bool& skipped) FG_AVX512_VBMI {
         before_row(r, s);
         int vector_end = width;
-        ForEach64<32, kOverlap>(
-            row, width, width,
-            [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
-                PrefetchSourceAhead<64>(ahead ? ahead + x : nullptr);
-                const __m512i s_low = _mm512_loadu_si512(s + x), s_high = _mm512_loadu_si512(s + x + 32);
-                if (AnyAbove10Bits(_mm512_or_si512(s_low, s_high))) {
-                    skipped = true;
-                    return;
-                }
-                __m512i noise_low, noise_high;
-                NoiseOf64<32, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
-                if constexpr (kOverlap == Overlap::kFade) {
-                    // (|noise| <= 512 at 10 bits: the fade's sums still fit 16-bit lanes)
-                    noise_low =
-                        FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, fade);
-                    noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
-                }
-                __m512i scale_low, scale_high;
-                Scales10(lut, s_low, s_high, up_shift, scale_low, scale_high);
-                StoreBlended(d + x, s_low, scale_low, noise_low, vmin, vmax);
-                StoreBlended(d + x + 32, s_high, scale_high, noise_high, vmin, vmax);
+        ForEachStep10<32, kOverlap>(
+            c, row, width, d, ahead, skipped,
+            [&](int x, __m512i& s_low, __m512i& s_high, __m512i& i_low, __m512i& i_high) FG_AVX512_VBMI {
+                i_low = s_low = _mm512_loadu_si512(s + x);
+                i_high = s_high = _mm512_loadu_si512(s + x + 32);
+                return _mm512_or_si512(s_low, s_high);
             },
             [&](int x, const uint32_t* seams) {
                 vector_end = x;
@@ -147,14 +162,11 @@ FG_AVX512_VBMI void Chroma10Rows(const uint16_t* src, uint16_t* dst, const uint1
                                  const BlockNoiseRow& first_row, int width, const ChromaScalingIndex& index,
                                  const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
                                  Rest&& rest, LeftOut&& left_out) {
-    const InterpolationLut lut = LoadInterpolationLut(scaling);
-    const SeamFade fade = MakeSeamFade(first_row);
-    const __m128i up_shift = _mm_cvtsi32_si128(15 - scaling_shift);
+    const Blend10Constants c = MakeBlend10Constants(scaling, scaling_shift, min_value, max_value, first_row);
     const __m512i mults =
         _mm512_set1_epi32(int32_t(uint32_t(uint16_t(index.luma_mult)) | uint32_t(uint16_t(index.mult)) << 16));
     const __m512i offset = _mm512_set1_epi16(int16_t(index.offset * 4));
     const __m512i zero = _mm512_setzero_si512(), last = _mm512_set1_epi16(1023);
-    const __m512i vmin = _mm512_set1_epi16(int16_t(min_value)), vmax = _mm512_set1_epi16(int16_t(max_value));
     auto merged = [&](__m512i l, __m512i s) FG_AVX512_VBMI {
         const __m512i lo = _mm512_srai_epi32(_mm512_madd_epi16(_mm512_unpacklo_epi16(l, s), mults), 6);
         const __m512i hi = _mm512_srai_epi32(_mm512_madd_epi16(_mm512_unpackhi_epi16(l, s), mults), 6);
@@ -165,36 +177,19 @@ FG_AVX512_VBMI void Chroma10Rows(const uint16_t* src, uint16_t* dst, const uint1
                          bool& skipped) FG_AVX512_VBMI {
         const uint16_t* l = RowDown(luma, r, rows.luma_stride);
         int vector_end = width;
-        ForEach64<kBlockWidth, kOverlap>(
-            row, width, width,
-            [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
-                PrefetchSourceAhead<64>(ahead ? ahead + x : nullptr);
-                const __m512i s_low = _mm512_loadu_si512(s + x), s_high = _mm512_loadu_si512(s + x + 32);
-                __m512i i_low = _mm512_loadu_si512(l + x), i_high = _mm512_loadu_si512(l + x + 32);
-                if (AnyAbove10Bits(_mm512_or_si512(_mm512_ternarylogic_epi64(s_low, s_high, i_low, 0xFE), i_high))) {
-                    skipped = true;
-                    return;
-                }
-                __m512i noise_low, noise_high;
-                NoiseOf64<kBlockWidth, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low,
-                                                                              noise_high);
-                if constexpr (kOverlap == Overlap::kFade) {
-                    if constexpr (kBlockWidth == 16) {
-                        FadeFourBlocks(blocks, x == 0, fade, noise_low, noise_high);
-                    } else {
-                        noise_low =
-                            FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, fade);
-                        noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, fade);
-                    }
-                }
+        ForEachStep10<kBlockWidth, kOverlap>(
+            c, row, width, d, ahead, skipped,
+            [&](int x, __m512i& s_low, __m512i& s_high, __m512i& i_low, __m512i& i_high) FG_AVX512_VBMI {
+                s_low = _mm512_loadu_si512(s + x);
+                s_high = _mm512_loadu_si512(s + x + 32);
+                i_low = _mm512_loadu_si512(l + x);
+                i_high = _mm512_loadu_si512(l + x + 32);
+                const __m512i any = _mm512_or_si512(_mm512_ternarylogic_epi64(s_low, s_high, i_low, 0xFE), i_high);
                 if constexpr (!kFromLuma) {
                     i_low = merged(i_low, s_low);
                     i_high = merged(i_high, s_high);
                 }
-                __m512i scale_low, scale_high;
-                Scales10(lut, i_low, i_high, up_shift, scale_low, scale_high);
-                StoreBlended(d + x, s_low, scale_low, noise_low, vmin, vmax);
-                StoreBlended(d + x + 32, s_high, scale_high, noise_high, vmin, vmax);
+                return any;
             },
             [&](int x, const uint32_t* seams) {
                 vector_end = x;
