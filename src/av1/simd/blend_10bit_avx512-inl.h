@@ -101,17 +101,7 @@ FG_AVX512_VBMI inline void ForEachStep10(const Blend10Constants& c, const BlockN
                 return;
             }
             __m512i noise_low, noise_high;
-            NoiseOf64<kBlockWidth, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
-            if constexpr (kOverlap == Overlap::kFade) {
-                // (|noise| <= 512 at 10 bits: the fade's sums still fit 16-bit lanes)
-                if constexpr (kBlockWidth == 16) {
-                    FadeFourBlocks(blocks, x == 0, c.fade, noise_low, noise_high);
-                } else {
-                    noise_low =
-                        FadeFirstPairs(noise_low, LeftPairs(blocks[-1], blocks[-1], 32), x ? 0x0001 : 0, c.fade);
-                    noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], 32), 0x0001, c.fade);
-                }
-            }
+            OverlappedNoiseOf64<kBlockWidth, kOverlap>(blocks, seams, x == 0, c.fade, noise_low, noise_high);
             __m512i scale_low, scale_high;
             Scales10(c.lut, i_low, i_high, c.up_shift, scale_low, scale_high);
             StoreBlended(d + x, s_low, scale_low, noise_low, c.vmin, c.vmax);

@@ -154,6 +154,28 @@ FG_AVX512_VBMI inline void NoiseOf64(const int16_t* const* blocks, const uint32_
     }
 }
 
+// NoiseOf64 in sample order with the row's horizontal overlap: the given seams, or the fade
+// of each block's first pair (blocks start at 32-bit lane 0 of each vector, and 8 with four
+// 16-wide blocks); the row's first block (`first_of_row`) has no left. The 8-bit chroma rows,
+// the 10-bit rows and the cross-faded rows take their noise so. (At 10 bits |noise| <= 512:
+// the fade's sums still fit 16-bit lanes.)
+template <int kBlockWidth, Overlap kOverlap>
+FG_AVX512_VBMI HWY_INLINE void OverlappedNoiseOf64(const int16_t* const* blocks, const uint32_t* seams,
+                                                   bool first_of_row, const SeamFade& fade, __m512i& low,
+                                                   __m512i& high) {
+    NoiseOf64<kBlockWidth, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, low, high);
+    if constexpr (kOverlap == Overlap::kFade) {
+        if constexpr (kBlockWidth == 16) {
+            FadeFourBlocks(blocks, first_of_row, fade, low, high);
+        } else {
+            // blocks[-1] is block 0's own where it has no left
+            low = FadeFirstPairs(low, LeftPairs(blocks[-1], blocks[-1], kBlockWidth), first_of_row ? 0 : 0x0001,
+                                 fade);
+            high = FadeFirstPairs(high, LeftPairs(blocks[0], blocks[0], kBlockWidth), 0x0001, fade);
+        }
+    }
+}
+
 // What a row's 64-sample steps share: the LUT, the q15 shift of the scales (or, for byte
 // noise, the q15 multiplier 1 << (15 - shift) of the exact products) and the clip.
 struct BlendConstants {
@@ -182,6 +204,15 @@ FG_AVX512_VBMI inline __m512i AddNoise64(const BlendConstants& c, __m512i packed
     return out;
 }
 
+// The blocks of the 64 samples from x on and the one on their left, into at[0..64 / kBlockWidth];
+// returns at + 1, so that [-1] is the left one (block 0's own where x is the row's start).
+template <int kBlockWidth>
+FG_AVX512_VBMI HWY_INLINE const int16_t* const* StepBlocks(const BlockNoiseRow& row, int x, const int16_t* (&at)[5]) {
+    const int b = x / kBlockWidth;  // a constant width: a shift, not a division
+    for (int k = -1; k < 64 / kBlockWidth; ++k) at[k + 1] = row.block(b + k < 0 ? 0 : b + k);
+    return at + 1;
+}
+
 // Drives a row: step(x, blocks, given seams from x's block or null) for every whole
 // 64 samples up to `vector_end`, then tail(x, seams of x's block and on, or null) once for the
 // samples after them, if any (faded here when the steps fade them).
@@ -190,12 +221,9 @@ FG_AVX512_VBMI inline void ForEach64(const BlockNoiseRow& row, int width, int ve
     constexpr int bw = kBlockWidth;  // a constant: the block of x is a shift, not a division
     const int main_end = vector_end / 64 * 64;
     int x = 0;
-    // blocks[-1..3] of the step: the 64 samples' blocks and the one on their left
     for (; x < main_end; x += 64) {
-        const int b = x / bw;
         const int16_t* blocks[5];
-        for (int k = -1; k < 64 / bw; ++k) blocks[k + 1] = row.block(b + k < 0 ? 0 : b + k);
-        step(x, blocks + 1, kOverlap == Overlap::kGivenSeams ? row.seams + b : nullptr);
+        step(x, StepBlocks<bw>(row, x, blocks), kOverlap == Overlap::kGivenSeams ? row.seams + x / bw : nullptr);
     }
     if (x >= width) return;
     uint32_t faded[64 / 16 + 1];
@@ -381,18 +409,7 @@ FG_AVX512_VBMI void ChromaRows(const uint8_t* src, uint8_t* dst, const uint8_t* 
             row, width, vector_end,
             [&](int x, const int16_t* const* blocks, const uint32_t* seams) FG_AVX512_VBMI {
                 __m512i noise_low, noise_high, index_low, index_high;
-                NoiseOf64<bw, false, kOverlap == Overlap::kGivenSeams>(blocks, seams, noise_low, noise_high);
-                if constexpr (kOverlap == Overlap::kFade) {
-                    // blocks start at 32-bit lanes 0 and 8 of each vector (four blocks) or lane 0
-                    // (two); the row's first has no left
-                    const int16_t* before = blocks[-1];  // (block 0's own where it has none)
-                    if constexpr (kSubsampled) {
-                        FadeFourBlocks(blocks, x == 0, fade, noise_low, noise_high);
-                    } else {
-                        noise_low = FadeFirstPairs(noise_low, LeftPairs(before, before, bw), x ? 0x0001 : 0, fade);
-                        noise_high = FadeFirstPairs(noise_high, LeftPairs(blocks[0], blocks[0], bw), 0x0001, fade);
-                    }
-                }
+                OverlappedNoiseOf64<bw, kOverlap>(blocks, seams, x == 0, fade, noise_low, noise_high);
                 const __m512i s_low = _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + x)));
                 const __m512i s_high =
                     _mm512_cvtepu8_epi16(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + x + 32)));
@@ -409,19 +426,9 @@ FG_AVX512_VBMI void ChromaRows(const uint8_t* src, uint8_t* dst, const uint8_t* 
 template <int kBlockWidth, bool kFade>
 FG_AVX512_VBMI inline void FadedNoiseOf64(const BlockNoiseRow& row, int x, const SeamFade& fade, __m512i& low,
                                           __m512i& high) {
-    const int b = x / kBlockWidth;
-    const int16_t* at[5];  // blocks b - 1 (b where b is the row's first) to b + 3
-    for (int k = -1; k < 64 / kBlockWidth; ++k) at[k + 1] = row.block(b + k < 0 ? 0 : b + k);
-    const int16_t* const* blocks = at + 1;
-    NoiseOf64<kBlockWidth, false, false>(blocks, nullptr, low, high);
-    if constexpr (kFade) {
-        if constexpr (kBlockWidth == 16) {
-            FadeFourBlocks(blocks, x == 0, fade, low, high);
-        } else {
-            low = FadeFirstPairs(low, LeftPairs(blocks[-1], blocks[-1], kBlockWidth), x ? 0x0001 : 0, fade);
-            high = FadeFirstPairs(high, LeftPairs(blocks[0], blocks[0], kBlockWidth), 0x0001, fade);
-        }
-    }
+    const int16_t* at[5];
+    OverlappedNoiseOf64<kBlockWidth, kFade ? Overlap::kFade : Overlap::kNone>(StepBlocks<kBlockWidth>(row, x, at),
+                                                                            nullptr, x == 0, fade, low, high);
 }
 
 // Twin of assemble_cross_faded_row up to 10 bits (where the weighted sums fit 16-bit lanes):
