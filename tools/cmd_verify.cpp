@@ -292,7 +292,12 @@ public:
             hash = hashes_[next_hash_++];
             return true;
         }
-        if (!reader_) reader_ = std::make_unique<VideoReader>(path_, raw_info);
+        if (!reader_) {
+            reader_ = std::make_unique<VideoReader>(path_, raw_info);
+            // a sample above the bit depth in the output under test is a mismatch to report
+            // (the picture is compared and the sample named), not an unreadable file
+            reader_->keep_samples_above_bit_depth();
+        }
         return reader_->read(picture);
     }
 
@@ -499,6 +504,7 @@ int run_verify(const VerifyOptions& o) {
         } else {
             f.comparison = verify::compare_pictures(pic.expected.view(), decoded.view(), result.luma_block);
             f.exact = f.comparison->exact();
+            if (!f.exact) f.above_bit_depth = find_sample_above_bit_depth(decoded.view());
         }
         if (f.exact) {
             contradictions.push_back(verify::certain_hypotheses(pic.facts, pic.clean.view()));

@@ -27,34 +27,46 @@ std::string frame_description(const VideoInfo& info) {
     return std::to_string(info.width) + "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format);
 }
 
+const char* const kPlaneNames[3] = {"Y", "Cb", "Cr"};
+
 // A 16-bit word above the declared bit depth: the data is not in the format named (a wrong
 // --pix-fmt or Y4M C tag, or samples in the high bits of their words, as P010 stores them).
 // Refused here, where a file is read anyway: the library does not scan pictures for such
 // samples (a pass over every picture) and blends them as the references' integers do, as
 // unsigned 16-bit values, which is rarely what was meant.
 void check_sample_range(FrameBuffer& frame, const std::string& path, int index) {
-    static const char* const kPlaneNames[3] = {"Y", "Cb", "Cr"};
-    const FrameView v = frame.view();
+    const std::optional<SampleAboveBitDepth> above = find_sample_above_bit_depth(frame.view());
+    if (!above) return;
+    const int bit_depth = frame.format().bit_depth;
+    throw Error(ErrorCode::kInvalidArgument,
+                "'" + path + "' frame " + std::to_string(index) + ": " + kPlaneNames[above->plane] + " sample " +
+                    std::to_string(above->value) + " at x " + std::to_string(above->x) + ", y " +
+                    std::to_string(above->y) + " is above the " + std::to_string(bit_depth) + "-bit range 0.." +
+                    std::to_string((1u << bit_depth) - 1) + ": is the data " + pix_fmt_name(frame.format()) +
+                    "? (each sample in the low " + std::to_string(bit_depth) +
+                    " bits of a little-endian 16-bit word; data in the high bits, as P010 stores it, "
+                    "reads as values up to 65535)");
+}
+}  // namespace
+
+std::optional<SampleAboveBitDepth> find_sample_above_bit_depth(const FrameView& v) {
+    if (v.bit_depth <= 8 || v.bit_depth >= 16) return std::nullopt;
     const unsigned max_value = (1u << v.bit_depth) - 1;
+    std::optional<SampleAboveBitDepth> first;
     for (int p = 0; p < v.plane_count(); p++)
         for (int y = 0; y < v.planes[p].height; y++) {
             const uint16_t* row = v.planes[p].row<const uint16_t>(y);
             unsigned any = 0;
             for (int x = 0; x < v.planes[p].width; x++) any |= row[x];
             if (any <= max_value) continue;
-            int x = 0;
-            while (row[x] <= max_value) x++;
-            throw Error(ErrorCode::kInvalidArgument,
-                        "'" + path + "' frame " + std::to_string(index) + ": " + kPlaneNames[p] + " sample " +
-                            std::to_string(row[x]) + " at x " + std::to_string(x) + ", y " + std::to_string(y) +
-                            " is above the " + std::to_string(v.bit_depth) + "-bit range 0.." +
-                            std::to_string(max_value) + ": is the data " + pix_fmt_name(frame.format()) +
-                            "? (each sample in the low " + std::to_string(v.bit_depth) +
-                            " bits of a little-endian 16-bit word; data in the high bits, as P010 stores it, "
-                            "reads as values up to 65535)");
+            for (int x = 0; x < v.planes[p].width; x++) {
+                if (row[x] <= max_value) continue;
+                if (!first) first = SampleAboveBitDepth{p, x, y, row[x], 0};
+                first->count++;
+            }
         }
+    return first;
 }
-}  // namespace
 
 VideoReader::VideoReader(const std::string& path, const VideoInfo& raw_info, bool force_raw) : path_(path) {
     in_ = std::make_unique<InputFile>(path);
@@ -175,7 +187,7 @@ bool VideoReader::read(FrameBuffer& frame) {
                                         frame_description(info_) + ")");
     if constexpr (std::endian::native == std::endian::big)
         if (info_.format.bit_depth > 8) swap_bytes_16(frame.bytes(), want);
-    if (info_.format.bit_depth > 8 && info_.format.bit_depth < 16) check_sample_range(frame, path_, frames_);
+    if (!keep_above_bit_depth_) check_sample_range(frame, path_, frames_);
     frames_++;
     return true;
 }

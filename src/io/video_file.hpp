@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,15 @@ struct VideoInfo {
     std::string y4m_extra;  // interlacing / aspect / colour-range tags to carry over
 };
 
+// The first sample above the bit depth of a picture of 9 to 15 bits (none at 8 or 16 bits),
+// and how many there are.
+struct SampleAboveBitDepth {
+    int plane = 0, x = 0, y = 0;
+    unsigned value = 0;
+    long long count = 0;
+};
+std::optional<SampleAboveBitDepth> find_sample_above_bit_depth(const FrameView& picture);
+
 class VideoReader {
 public:
     // Raw input needs `raw_info` (size and format); Y4M input (".y4m" or a YUV4MPEG2
@@ -42,6 +52,10 @@ public:
     // file): a range of a clip starts where it starts. false when the input ends first.
     bool skip_frames(int n);
     int frames_read() const { return frames_; }
+    // read() refuses a sample above the bit depth (the data is not in the format named)
+    // unless this is called: a decoder's output under verification may hold such samples,
+    // which are then a finding about the decoder (a missing clip), not an input error.
+    void keep_samples_above_bit_depth() { keep_above_bit_depth_ = true; }
 
 private:
     void read_y4m_header();
@@ -50,6 +64,7 @@ private:
     std::string path_;
     VideoInfo info_;
     int frames_ = 0;
+    bool keep_above_bit_depth_ = false;
 };
 
 class VideoWriter {

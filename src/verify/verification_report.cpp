@@ -275,6 +275,14 @@ void print_hypotheses_text(std::FILE* out, const std::vector<HypothesisOutcome>&
     }
 }
 
+std::string above_bit_depth_text(const SampleAboveBitDepth& a) {
+    static const char* const kPlanes[3] = {"Y", "Cb", "Cr"};
+    return std::to_string(a.count) + (a.count == 1 ? " decoded sample is" : " decoded samples are") +
+           " above the bit depth (first: " + kPlanes[a.plane] + " " + std::to_string(a.value) + " at x " +
+           std::to_string(a.x) + ", y " + std::to_string(a.y) +
+           "): the decoder does not clip, or its output is not in the format named";
+}
+
 void print_mismatching_frame_text(std::FILE* out, const FrameVerification& f) {
     std::fprintf(out, "picture %d: differs from the reference", f.index);
     if (f.decoded_index >= 0 && f.decoded_index != f.index) std::fprintf(out, " (decoded picture %d)", f.decoded_index);
@@ -285,6 +293,7 @@ void print_mismatching_frame_text(std::FILE* out, const FrameVerification& f) {
     } else if (!f.expected_md5.empty() || !f.decoded_md5.empty()) {
         std::fprintf(out, "  expected md5 %s\n  decoded md5  %s\n", f.expected_md5.c_str(), f.decoded_md5.c_str());
     }
+    if (f.above_bit_depth) std::fprintf(out, "  %s\n", above_bit_depth_text(*f.above_bit_depth).c_str());
     if (!f.heat_map.empty()) std::fprintf(out, "  heat map: %s\n", f.heat_map.c_str());
     print_hypotheses_text(out, f.hypotheses);
 }
@@ -368,6 +377,12 @@ Json frame_json(const FrameVerification& f) {
                 {"expected_md5", optional_string(f.expected_md5)},
                 {"decoded_md5", optional_string(f.decoded_md5)},
                 {"heat_map", optional_string(f.heat_map)},
+                {"above_bit_depth", f.above_bit_depth ? Json{{"count", f.above_bit_depth->count},
+                                                             {"plane", f.above_bit_depth->plane},
+                                                             {"x", f.above_bit_depth->x},
+                                                             {"y", f.above_bit_depth->y},
+                                                             {"value", f.above_bit_depth->value}}
+                                                      : Json(nullptr)},
                 {"hypotheses", hypotheses}};
 }
 
@@ -476,7 +491,9 @@ void frame_row_html(std::ostringstream& html, const FrameVerification& f) {
     } else {
         html << "<td colspan=\"3\"></td>";
     }
-    html << "<td>" << best_hypothesis_html(f) << "</td><td>";
+    html << "<td>" << best_hypothesis_html(f);
+    if (f.above_bit_depth) html << "<br>" << html_escape(above_bit_depth_text(*f.above_bit_depth));
+    html << "</td><td>";
     if (!f.heat_map.empty()) html << "<a href=\"#heat-" << f.index << "\">heat map</a>";
     html << "</td></tr>\n";
 }

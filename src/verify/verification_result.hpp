@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "io/video_file.hpp"
 #include "verify/picture_comparison.hpp"
 
 namespace filmgrain::verify {
@@ -27,6 +28,9 @@ struct FrameVerification {
     // Picture comparisons (absent with a .md5 list: then only exact is known).
     std::optional<PictureComparison> comparison;
     std::string expected_md5, decoded_md5;  // .md5 lists
+    // Mismatching decoded pictures of 9 to 15 bits: their samples above the bit depth (a
+    // decoder that does not clip, or data not in the format named), the first and the count.
+    std::optional<SampleAboveBitDepth> above_bit_depth;
     // The heat map written for this picture (HeatMapWriter), relative to the report; empty: none.
     std::string heat_map;
     // Mismatching pictures: every hypothesis that applies to this picture, best first.
