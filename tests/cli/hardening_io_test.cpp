@@ -2,8 +2,8 @@
 // against its ASan/UBSan build, see tests/CMakeLists.txt).
 //  - sizes are checked against the picture limit and against the file before anything is
 //    allocated, and whole-file reads are bounded;
-//  - 10- and 12-bit samples above the bit depth are refused, naming where they are, except
-//    in the decoder output verify checks, where they are a mismatch it names;
+//  - 10- and 12-bit samples above the bit depth are refused, naming where they are (but not
+//    in the decoder output verify checks: tests/verify/decoded_above_bit_depth_test.cpp);
 //  - Y4M header numbers are parsed strictly; the Y4M the tool writes is what FFmpeg reads,
 //    and it reads what FFmpeg writes (every format, through Debian's ffmpeg binary);
 //  - a fatal signal removes the hidden partial output and kills the tool by that signal;
@@ -25,7 +25,6 @@
 #include <random>
 #include <string>
 #include <thread>
-#include <tuple>
 #include <vector>
 
 #include "tool_under_test.hpp"
@@ -251,46 +250,6 @@ TEST_F(HardeningIo, SamplesAboveTheBitDepthAreRefusedNamingThePlaceAndTheRange) 
                                       params() + " -o " + quoted(dir / "out.yuv"));
     EXPECT_TRUE(ok.exited_with(0)) << ok.output;
     EXPECT_EQ(fs::file_size(dir / "out.yuv"), bytes.size());
-}
-
-// verify reads the decoder's output under test: there a sample above the bit depth is what
-// the decoder did (no clip, or output in another format), a mismatch to name, where it used
-// to be refused as unreadable input (exit 2, nothing compared). The clean input is still
-// refused so.
-TEST_F(HardeningIo, VerifyNamesDecodedSamplesAboveTheBitDepthAsAMismatch) {
-    const int w = 64, h = 32;
-    std::vector<uint16_t> words(std::size_t(w) * h * 3 / 2);
-    std::mt19937 rng(5);
-    for (auto& v : words) v = uint16_t(64 + rng() % 896);
-    write_file(dir / "clean.yuv", std::string(reinterpret_cast<const char*>(words.data()), words.size() * 2));
-    const std::string raw = " --size 64x32 --pix-fmt yuv420p10le";
-    ASSERT_TRUE(run_tool("apply -i " + quoted(dir / "clean.yuv") + raw + params() + " -o " + quoted(dir / "ref.yuv"))
-                    .exited_with(0));
-    const std::string ref = read_file(dir / "ref.yuv");
-    const auto verify = [&](const char* clean, const char* decoded) {
-        return run_tool("verify --clean " + quoted(dir / clean) + params() + " -d " + quoted(dir / decoded) + raw);
-    };
-    const CommandResult exact = verify("clean.yuv", "ref.yuv");
-    EXPECT_TRUE(exact.exited_with(0)) << exact.output;
-    // Y at x 5, y 3 and x 9, y 7
-    std::string bad = ref;
-    for (const auto& [x, y, value] : {std::tuple{5, 3, 2000}, std::tuple{9, 7, 1500}}) {
-        const std::size_t at = 2 * (std::size_t(y) * w + std::size_t(x));
-        bad[at] = char(value & 0xFF);
-        bad[at + 1] = char(value >> 8);
-    }
-    write_file(dir / "bad.yuv", bad);
-    const CommandResult r = verify("clean.yuv", "bad.yuv");
-    EXPECT_TRUE(r.exited_with(1)) << r.output;
-    EXPECT_NE(r.output.find("first at Y x 5 y 3:"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("2 decoded samples are above the bit depth (first: Y 2000 at x 5, y 3)"),
-              std::string::npos)
-        << r.output;
-    const CommandResult refused = verify("bad.yuv", "ref.yuv");
-    ASSERT_TRUE(refused.clean_error()) << refused.output;
-    EXPECT_NE(refused.output.find("frame 0: Y sample 2000 at x 5, y 3 is above the 10-bit range 0..1023"),
-              std::string::npos)
-        << refused.output;
 }
 
 // Y4M header numbers: W4294967312 wrapped to 16 (atoi); every number is now digits only and
