@@ -17,6 +17,7 @@
 #include "analysis/analysis_report.hpp"
 #include "analysis/grain_analyzer.hpp"
 #include "analysis/plane_image.hpp"
+#include "core/field_names.hpp"
 #include "filmgrain/session.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_sei.hpp"
@@ -208,7 +209,6 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
     std::vector<Av1FilmGrainParams> av1_frames;
     analysis::ReportInput rep;
     rep.bit_depth = fmt.bit_depth;
-    const char* names[3] = {"Y", "Cb", "Cr"};
     const int nplanes = num_planes(fmt.chroma);
     auto pct = [&](double x) { return percent(x); };
     // The accuracy check: a component whose description misses the measured level curve by
@@ -221,7 +221,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
     auto check_accuracy = [&](int c, bool present, double error, int band) {
         if (!present || error <= o.max_error) return std::string();
         std::ostringstream m;
-        m << names[c] << ": the fitted levels miss the measured grain level by " << pct(error);
+        m << plane_name(c) << ": the fitted levels miss the measured grain level by " << pct(error);
         if (band >= 0) m << " in intensities " << band << ".." << band + analysis::kErrorBandWidth - 1;
         m << " (allowed at most " << pct(o.max_error) << ", --max-error)";
         inaccurate.push_back(m.str());
@@ -235,7 +235,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
         for (int c = 0; c < nplanes; c++) {
             const auto& r = e.components[c];
             analysis::ReportPlane rp;
-            rp.name = names[c];
+            rp.name = plane_name(c);
             rp.present = fgc_params.comp[c].comp_model_present_flag && !fgc_params.film_grain_characteristics_cancel_flag;
             rp.curve = r.curve;
             rp.observations = analyzer->observations()[c].blocks;
@@ -269,7 +269,7 @@ void AnalysisJob::write_outputs(const analysis::GrainAnalyzer& analyzer_ref, int
         for (int c = 0; c < nplanes; c++) {
             const auto& r = e.components[c];
             analysis::ReportPlane rp;
-            rp.name = names[c];
+            rp.name = plane_name(c);
             rp.present = r.present && e.params.apply_grain;
             rp.curve = r.curve;
             // chroma curves and points are over the scaling index, which may mix in the luma

@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "bitstream/afgs1_in_stream.hpp"
+#include "core/field_names.hpp"
 #include "filmgrain/error.hpp"
 #include "metadata/afgs1.hpp"
 #include "metadata/fgc_json.hpp"
@@ -95,10 +96,9 @@ std::string fgc_summary(const FgcParams& p) {
     if (p.film_grain_characteristics_cancel_flag) return "cancel";
     std::string s = "model " + std::to_string(p.film_grain_model_id) + ", blending " +
                     std::to_string(p.blending_mode_id) + ", log2_scale_factor " + std::to_string(p.log2_scale_factor);
-    static const char* const comp[] = {"Y", "Cb", "Cr"};
     for (int c = 0; c < 3; c++)
         if (p.comp[c].comp_model_present_flag)
-            s += ", " + std::string(comp[c]) + ": " + std::to_string(p.comp[c].intervals.size()) + " interval(s)";
+            s += ", " + std::string(plane_name(c)) + ": " + std::to_string(p.comp[c].intervals.size()) + " interval(s)";
     s += ", persistence " + std::to_string(int(p.film_grain_characteristics_persistence_flag));
     return s;
 }

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/field_names.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain {
@@ -27,7 +28,6 @@ std::string frame_description(const VideoInfo& info) {
     return std::to_string(info.width) + "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format);
 }
 
-const char* const kPlaneNames[3] = {"Y", "Cb", "Cr"};
 
 // A 16-bit word above the declared bit depth: the data is not in the format named (a wrong
 // --pix-fmt or Y4M C tag, or samples in the high bits of their words, as P010 stores them).
@@ -39,7 +39,7 @@ void check_sample_range(FrameBuffer& frame, const std::string& path, int index) 
     if (!above) return;
     const int bit_depth = frame.format().bit_depth;
     throw Error(ErrorCode::kInvalidArgument,
-                "'" + path + "' frame " + std::to_string(index) + ": " + kPlaneNames[above->plane] + " sample " +
+                "'" + path + "' frame " + std::to_string(index) + ": " + plane_name(above->plane) + " sample " +
                     std::to_string(above->value) + " at x " + std::to_string(above->x) + ", y " +
                     std::to_string(above->y) + " is above the " + std::to_string(bit_depth) + "-bit range 0.." +
                     std::to_string((1u << bit_depth) - 1) + ": is the data " + pix_fmt_name(frame.format()) +

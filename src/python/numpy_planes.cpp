@@ -2,12 +2,12 @@
 
 #include <cstdint>
 
+#include "core/field_names.hpp"
 #include "filmgrain/error.hpp"
 
 namespace filmgrain::python {
 namespace {
 
-const char* const kPlaneNames[3] = {"Y", "Cb", "Cr"};
 
 ChromaFormat parse_chroma(const std::string& s) {
     if (s == "420") return ChromaFormat::k420;
@@ -44,14 +44,14 @@ NumpyPicture picture_from_planes(const py::object& planes, std::optional<int> bi
     int itemsize = 0;
     for (std::size_t c = 0; c < items.size(); c++) {
         if (!py::isinstance<py::array>(items[c]))
-            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + kPlaneNames[c] + " is not a numpy array");
+            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + plane_name(c) + " is not a numpy array");
         py::array a = py::reinterpret_borrow<py::array>(items[c]);
         if (a.ndim() != 2)
-            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + kPlaneNames[c] + " has " +
+            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + plane_name(c) + " has " +
                                                          std::to_string(a.ndim()) + " dimensions (a plane has 2)");
         const bool u8 = a.dtype().is(py::dtype::of<uint8_t>()), u16 = a.dtype().is(py::dtype::of<uint16_t>());
         if (!u8 && !u16)
-            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + kPlaneNames[c] + " has dtype " +
+            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + plane_name(c) + " has dtype " +
                                                          std::string(py::str(a.dtype())) + " (allowed uint8, uint16)");
         if (itemsize && int(a.itemsize()) != itemsize)
             throw Error(ErrorCode::kInvalidArgument, "planes mix uint8 and uint16");
@@ -59,10 +59,10 @@ NumpyPicture picture_from_planes(const py::object& planes, std::optional<int> bi
         const bool in_place = a.strides(1) == a.itemsize() && (reinterpret_cast<std::uintptr_t>(a.data()) % a.itemsize() == 0) &&
                               (a.strides(0) % a.itemsize() == 0);
         if (writable && !a.writeable())
-            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + kPlaneNames[c] + " is read-only");
+            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + plane_name(c) + " is read-only");
         if (!in_place) {
             if (writable)
-                throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + kPlaneNames[c] +
+                throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + plane_name(c) +
                                                              ": in-place output needs samples contiguous along rows");
             a = py::array::ensure(a, py::array::c_style | py::array::forcecast);
         }
@@ -96,7 +96,7 @@ NumpyPicture picture_from_planes(const py::object& planes, std::optional<int> bi
         p.width = int(a.shape(1));
         const int ew = plane_width(v.format, int(c), v.width), eh = plane_height(v.format, int(c), v.height);
         if (p.width != ew || p.height != eh)
-            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + kPlaneNames[c] + " is " +
+            throw Error(ErrorCode::kInvalidArgument, std::string("plane ") + plane_name(c) + " is " +
                                                          std::to_string(p.width) + "x" + std::to_string(p.height) +
                                                          ", expected " + std::to_string(ew) + "x" + std::to_string(eh));
     }

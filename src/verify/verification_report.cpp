@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/field_names.hpp"
 #include "filmgrain/error.hpp"
 #include "io/output_file.hpp"
 #include "report/png_file.hpp"
@@ -35,11 +36,6 @@ std::string printf_string(const char* format, ...) {
     if (length > 0) std::vsnprintf(out.data(), out.size() + 1, format, again);
     va_end(again);
     return out;
-}
-
-const char* plane_name(std::size_t plane) {
-    static const char* const names[] = {"Y", "Cb", "Cr"};
-    return plane < 3 ? names[plane] : "?";
 }
 
 std::string plural(int64_t n, const char* one, const char* many) {
@@ -276,9 +272,8 @@ void print_hypotheses_text(std::FILE* out, const std::vector<HypothesisOutcome>&
 }
 
 std::string above_bit_depth_text(const SampleAboveBitDepth& a) {
-    static const char* const kPlanes[3] = {"Y", "Cb", "Cr"};
     return std::to_string(a.count) + (a.count == 1 ? " decoded sample is" : " decoded samples are") +
-           " above the bit depth (first: " + kPlanes[a.plane] + " " + std::to_string(a.value) + " at x " +
+           " above the bit depth (first: " + plane_name(a.plane) + " " + std::to_string(a.value) + " at x " +
            std::to_string(a.x) + ", y " + std::to_string(a.y) +
            "): the decoder does not clip, or its output is not in the format named";
 }
