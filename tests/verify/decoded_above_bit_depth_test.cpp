@@ -2,7 +2,7 @@
 // the decoder did (no clip, or output in another format than the one named), a mismatch to
 // name. It used to be refused as unreadable input (exit 2, nothing compared). The clean input
 // is still refused so, as every command's input is (tests/cli/hardening_io_test.cpp). Runs
-// the build's own tool: the ASan/UBSan tool has no verification.
+// the build's tool, and the ASan/UBSan tool under asan_ubsan.verify_tests.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
