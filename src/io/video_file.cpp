@@ -28,7 +28,6 @@ std::string frame_description(const VideoInfo& info) {
     return std::to_string(info.width) + "x" + std::to_string(info.height) + " " + pix_fmt_name(info.format);
 }
 
-
 // A 16-bit word above the declared bit depth: the data is not in the format named (a wrong
 // --pix-fmt or Y4M C tag, or samples in the high bits of their words, as P010 stores them).
 // Refused here, where a file is read anyway: the library does not scan pictures for such

@@ -8,7 +8,6 @@
 namespace filmgrain::python {
 namespace {
 
-
 ChromaFormat parse_chroma(const std::string& s) {
     if (s == "420") return ChromaFormat::k420;
     if (s == "422") return ChromaFormat::k422;
