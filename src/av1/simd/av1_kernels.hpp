@@ -33,8 +33,8 @@ namespace filmgrain::av1::simd {
 //
 // At 8 bits the grain fits a byte (-128..127): byte_blocks, where set, are the same blocks in
 // an int8 copy of the template (byte_blocks[b] + row_offset is block(b) as bytes), for the
-// kernels that read noise as bytes (the AVX-512 VBMI luma rows, which then load half the noise
-// bytes and fade the seams in byte pairs). They read 64 bytes from every such row's start (its
+// kernels that read noise as bytes (the AVX-512 VBMI and the AVX2 luma rows, which then load half
+// the noise bytes and fade the seams in byte pairs). They read 64 bytes from every such row's start (its
 // block and the next block's overlap columns): the copy is padded for that. Every kernel must
 // give the same output with and without them.
 struct BlockNoiseRow {
@@ -67,7 +67,7 @@ struct BlockNoiseRow {
 inline constexpr int kByteNoiseReadBytes = 64;
 
 // Whether the luma row kernels this CPU dispatches to read BlockNoiseRow::byte_blocks (the
-// AVX-512 VBMI form): where none does, the synthesis makes no int8 copy.
+// AVX-512 VBMI and the AVX2 forms): where none does, the synthesis makes no int8 copy.
 bool luma_rows_read_byte_noise();
 
 // The int8 copy of 8-bit noise `samples` (each within -128..127) for byte_blocks, with

@@ -1166,8 +1166,13 @@ void BlendLumaRowsU8Avx2(const uint8_t* src, uint8_t* dst, const PlaneRows& rows
     };
     avx2::WithOverlap(first, [&](auto overlap) FG_INLINE_LAMBDA {
         avx2::WithFlag(min_value > 0 || max_value < 255, [&](auto clip) FG_INLINE_LAMBDA {
-            avx2::LumaRows<decltype(overlap)::value, decltype(clip)::value>(
-                src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
+            constexpr avx2::Overlap kOverlap = decltype(overlap)::value;
+            if constexpr (kOverlap != avx2::Overlap::kGivenSeams)
+                if (first.byte_blocks)
+                    return avx2::LumaRows<kOverlap, decltype(clip)::value, true>(
+                        src, dst, rows, first, width, scaling, scaling_shift, min_value, max_value, rest);
+            avx2::LumaRows<kOverlap, decltype(clip)::value, false>(src, dst, rows, first, width, scaling,
+                                                                  scaling_shift, min_value, max_value, rest);
         });
     });
 }
@@ -1200,6 +1205,8 @@ void BlendChromaRowsU8Avx2(const uint8_t* src, uint8_t* dst, const uint8_t* luma
 bool LumaRowsReadByteNoise() {
 #if HWY_TARGET == HWY_AVX3
     return avx512::HasAvx512Vbmi();  // BlendLumaRowsU8Avx512
+#elif HWY_TARGET == HWY_AVX2
+    return true;  // BlendLumaRowsU8Avx2
 #else
     return false;
 #endif

@@ -13,7 +13,10 @@
 // 16-23, then 8-15 and 24-31; the noise is loaded in that order and the final pack restores
 // the samples' order), and chroma in sample order (its indices come out of the co-sited luma
 // so; one permute restores the output). The horizontal overlap of a step's blocks is faded
-// in one 128-bit vector of their first pairs (FadeFirstPairs).
+// in one 128-bit vector of their first pairs (FadeFirstPairs). Luma rows that also come as
+// int8 noise (BlockNoiseRow::byte_blocks) stay in byte order instead: a 32-sample vector is
+// one block's row, one load, its seam faded as byte pairs (FadedByteNoise32) and its terms
+// made as bytes (AddByteNoise32), as in the VBMI form.
 #if HWY_TARGET == HWY_AVX2
 
 namespace avx2 {
@@ -22,27 +25,39 @@ namespace avx2 {
 // caller made (BlockNoiseRow::seams), or faded here (BlockNoiseRow::fade).
 enum class Overlap { kNone, kGivenSeams, kFade };
 
-// What a row's steps share: the LUT's shuffle rows, the q15 shift of the scales, the clip and
-// the overlap fade's weights (as FadeConstantsOf, in 32-bit pairs).
+// What a row's steps share: the LUT's shuffle rows, the q15 shift of the scales (or, for byte
+// noise, the multiplier that is Round2 by shift), the clip and the overlap fade's weights (as
+// FadeConstantsOf, in 32-bit pairs; for byte noise as the (old, new) byte pairs of the first two
+// columns, then (0, 32) pairs, which keep a column as it is).
 struct StepConstants {
     ShuffleRows<D8> rows;
     __m128i up_shift;
+    __m256i shift_multiplier;
     __m256i min_value, max_value;
     __m256i w_old, w_new, round, gmin, gmax;
+    __m128i byte_fade_weights;
 };
 
 inline StepConstants MakeStepConstants(const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value,
                                        const BlockNoiseRow& row) {
     auto pair = [](int16_t a, int16_t b) { return int32_t(uint32_t(uint16_t(a)) | uint32_t(uint16_t(b)) << 16); };
+    auto bytes = [](int a, int b, int c, int d) {
+        return int32_t(uint32_t(uint8_t(a)) | uint32_t(uint8_t(b)) << 8 | uint32_t(uint8_t(c)) << 16 |
+                       uint32_t(uint8_t(d)) << 24);
+    };
+    const int32_t keep = bytes(0, 32, 0, 32);
     return {ShuffleRows<D8>(scaling.table8().data(), scaling.lut8_chain()),
             _mm_cvtsi32_si128(15 - scaling_shift),
+            _mm256_set1_epi16(int16_t(1 << (15 - scaling_shift))),
             _mm256_set1_epi8(char(min_value)),
             _mm256_set1_epi8(char(max_value)),
             _mm256_set1_epi32(pair(row.fade_old[0], row.fade_old[1])),
             _mm256_set1_epi32(pair(row.fade_new[0], row.fade_new[1])),
             _mm256_set1_epi16(1 << 10),
             _mm256_set1_epi16(row.gmin),
-            _mm256_set1_epi16(row.gmax)};
+            _mm256_set1_epi16(row.gmax),
+            _mm_set_epi32(keep, keep, keep,
+                          bytes(row.fade_old[0], row.fade_new[0], row.fade_old[1], row.fade_new[1]))};
 }
 
 // `noise` with its 32-bit lane 0 (a block's first two samples) replaced by the fade with the
@@ -144,6 +159,42 @@ HWY_INLINE void LookUp64(const StepConstants& c, __m256i index_a, __m256i index_
     scale_b = b.raw;
 }
 
+// Byte noise (BlockNoiseRow::byte_blocks), luma: a 32-sample vector is one block's row of int8
+// noise in sample order, one load. Its first two samples fade with columns 32 and 33 of the
+// left block (`left`, the same row): those interleave byte by byte with the own noise, so that
+// one unsigned x signed byte multiply-add by the (old, new) weight pairs makes each weighted sum
+// in a 16-bit lane (at most 45 * 128), the rounding high multiply by 1 << 10 is Round2 by 5 and
+// the signed saturating pack is the clamp to -128..127 (GrainMin, GrainMax at 8 bits). The
+// other pairs weigh (0, 32), which gives the own noise back, so the 32-bit lane of the first
+// four bytes is replaced whole.
+HWY_INLINE __m256i FadedByteNoise32(const int8_t* left, __m256i own, const StepConstants& c) {
+    const __m128i pairs = _mm_unpacklo_epi8(Load128(left + 32), _mm256_castsi256_si128(own));
+    const __m128i faded = _mm_mulhrs_epi16(_mm_maddubs_epi16(c.byte_fade_weights, pairs),
+                                           _mm256_castsi256_si128(c.round));
+    return _mm256_blend_epi32(own, _mm256_castsi128_si256(_mm_packs_epi16(faded, faded)), 0x01);
+}
+
+// clip(src + Round2(scale * noise, shift)) of 32 samples in byte order, the noise as int8, as
+// the VBMI form's AddByteNoise64 (blend_u8_avx512-inl.h) argues: the scales times the even
+// noise bytes (odd ones zeroed) and times the odd ones are exact products in 16-bit lanes
+// (at most 255 * 128), the rounding high multiply by 1 << (15 - shift) is Round2 by shift,
+// within -127..127 at shift >= 8, so the even terms' low bytes and the odd terms shifted into
+// the high bytes are all 32 terms as bytes; src + term clipped to 0..255 is one signed
+// saturating add with src biased by 128.
+template <bool kClip>
+HWY_INLINE __m256i AddByteNoise32(const StepConstants& c, __m256i src, __m256i scale, __m256i noise) {
+    const __m256i even = _mm256_set1_epi16(0x00FF);
+    const __m256i even_terms =
+        _mm256_mulhrs_epi16(_mm256_maddubs_epi16(scale, _mm256_and_si256(noise, even)), c.shift_multiplier);
+    const __m256i odd_terms =
+        _mm256_mulhrs_epi16(_mm256_maddubs_epi16(scale, _mm256_andnot_si256(even, noise)), c.shift_multiplier);
+    const __m256i terms = _mm256_blendv_epi8(_mm256_slli_epi16(odd_terms, 8), even_terms, even);
+    const __m256i bias = _mm256_set1_epi8(char(0x80));
+    __m256i out = _mm256_xor_si256(_mm256_adds_epi8(_mm256_xor_si256(src, bias), terms), bias);
+    if constexpr (kClip) out = _mm256_min_epu8(_mm256_max_epu8(out, c.min_value), c.max_value);
+    return out;
+}
+
 // Drives a row: step(x, std::integral_constant<int, 64 or 32>) for every whole 64 samples up
 // to `vector_end` and one 32 after them where it fits, then tail(x) once for the samples
 // after them, if any.
@@ -161,7 +212,9 @@ HWY_INLINE void ForEachStep(int width, int vector_end, Step&& step, Tail&& tail)
 // blend_luma_row's 8-bit AVX2 form over rows.count rows, in unpack order (the sample bytes
 // are the indices; loading the noise so costs what a lane-restoring permute would);
 // `rest(r, row, x)` takes each row's samples after the last whole 32.
-template <Overlap kOverlap, bool kClip, class Rest>
+// With kBytes (byte_blocks set; no given seams) the steps read the noise as bytes and stay in
+// sample order.
+template <Overlap kOverlap, bool kClip, bool kBytes, class Rest>
 void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const BlockNoiseRow& first_row, int width,
               const ScalingLookup& scaling, int scaling_shift, int min_value, int max_value, Rest&& rest) {
     const StepConstants c = MakeStepConstants(scaling, scaling_shift, min_value, max_value, first_row);
@@ -185,11 +238,32 @@ void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const Blo
                                 AddScaledNoise32<kClip, true>(c, scale, _mm256_unpacklo_epi8(v, zero),
                                                               _mm256_unpackhi_epi8(v, zero), noise.low, noise.high));
         };
+        auto blend_byte_block = [&](int x, __m256i v, __m256i scale, __m256i noise) FG_INLINE_LAMBDA {
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x), AddByteNoise32<kClip>(c, v, scale, noise));
+        };
         ForEachStep(
             width, width,
             [&](int x, auto samples) FG_INLINE_LAMBDA {
                 const __m256i v = Load256(s + x);
                 const int b = x / 32;
+                if constexpr (kBytes) {
+                    static_assert(kOverlap != Overlap::kGivenSeams);
+                    __m256i nv = Load256(row.byte_block(b));
+                    if constexpr (kOverlap == Overlap::kFade)
+                        if (x > 0) nv = FadedByteNoise32(row.byte_block(b - 1), nv, c);
+                    if constexpr (decltype(samples)::value == 64) {
+                        const __m256i w = Load256(s + x + 32);  // before the first store: in place
+                        __m256i nw = Load256(row.byte_block(b + 1));
+                        if constexpr (kOverlap == Overlap::kFade) nw = FadedByteNoise32(row.byte_block(b), nw, c);
+                        __m256i scale_v, scale_w;
+                        LookUp64(c, v, w, scale_v, scale_w);
+                        blend_byte_block(x, v, scale_v, nv);
+                        blend_byte_block(x + 32, w, scale_w, nw);
+                    } else {
+                        blend_byte_block(x, v, LookUp32(c, v), nv);
+                    }
+                    return;
+                }
                 Noise nv = noise_at(x);
                 if constexpr (decltype(samples)::value == 64) {
                     const __m256i w = Load256(s + x + 32);  // before the first store: in place
