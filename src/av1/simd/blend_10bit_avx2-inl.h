@@ -6,11 +6,11 @@
 // Why a separate form: the generic kernels look a chunk's scales up into a buffer
 // (InterpolatedScales) and blend in a second pass that loads every sample again. Here a step
 // keeps its indices, scales and sums in registers, and looks its scales up by byte shuffles
-// over the rows of the full-range table its indices span (Scales10), the indices clamped to
-// the table first (ScalingLookup reads the last entry beyond the bit depth); a step holding a
-// sample above 10 bits is left to the caller's scalar form (AnyAbove10Bits). 16-bit lanes hold
-// samples in order throughout (the byte packing pairs lanes, never crosses them), so no
-// permutes are needed.
+// over the rows of the full-range table its indices span (Scales10); a step holding a sample
+// above 10 bits is left to the caller's scalar form (AnyAbove10Bits), so the samples a step
+// blends are within the table as they are, and only merged chroma indices need clipping.
+// 16-bit lanes hold samples in order throughout (the byte packing pairs lanes, never crosses
+// them), so no permutes are needed.
 #if HWY_TARGET == HWY_AVX2
 
 namespace avx2 {
@@ -21,7 +21,7 @@ struct Step10Constants {
     const ScalingLookup* scaling;
     const uint8_t* full_table;  // scaling->full_table()
     int scaling_shift;
-    __m256i nibble, one8, two8, last;
+    __m256i nibble, low_byte, one8, two, last;
     __m256i min_value, max_value;
     __m128i up_shift;
 };
@@ -32,8 +32,9 @@ inline Step10Constants MakeStep10Constants(const ScalingLookup& scaling, int sca
             scaling.full_table(),
             scaling_shift,
             _mm256_set1_epi16(15),
+            _mm256_set1_epi16(0xFF),
             _mm256_set1_epi8(1),
-            _mm256_set1_epi8(2),
+            _mm256_set1_epi16(2),
             _mm256_set1_epi16(1023),
             _mm256_set1_epi16(int16_t(min_value)),
             _mm256_set1_epi16(int16_t(max_value)),
@@ -64,23 +65,23 @@ constexpr int kLastThreeRowBase = 1023 / 16 - 2;
 
 template <int kVectors>
 HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVectors], __m256i (&scale)[kVectors]) {
-    constexpr int kPairs = kVectors / 2;
     __m256i row[kVectors];
     for (int g = 0; g < kVectors; ++g) row[g] = _mm256_srli_epi16(index[g], 4);
-    // Each pair of vectors works as one vector of bytes, packed from its 16-bit lanes (rows and
-    // low nibbles fit a byte); unpacking the looked-up bytes against zero gives each vector's
-    // order back, since the pack and the unpacks pair the same 128-bit lanes.
-    __m256i packed_rows[kPairs];
-    for (int p = 0; p < kPairs; ++p) packed_rows[p] = _mm256_packus_epi16(row[2 * p], row[2 * p + 1]);
-    // rows [base, base + count) of the table, count >= span; rel[p]: packed_rows[p] - base
-    auto by_rows = [&](int base, auto count, const __m256i (&rel)[kPairs]) FG_INLINE_LAMBDA {
-        __m256i low[kPairs], picked[kPairs];
+    // rows [base, base + count) of the table, count >= span
+    auto by_rows = [&](int base, auto count) FG_INLINE_LAMBDA {
+        constexpr int kPairs = kVectors / 2;
+        const __m256i base16 = _mm256_set1_epi16(int16_t(base));
+        __m256i low[kPairs], rel[kPairs], picked[kPairs];
         const uint8_t* table = c.full_table + 16 * base;
         const __m256i first_row =
             _mm256_broadcastsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(table)));
         for (int p = 0; p < kPairs; ++p) {
-            low[p] = _mm256_packus_epi16(_mm256_and_si256(index[2 * p], c.nibble),
-                                         _mm256_and_si256(index[2 * p + 1], c.nibble));
+            // the pair's low nibbles and rows (relative to the base) as the even and odd
+            // bytes of one vector
+            low[p] = _mm256_or_si256(_mm256_and_si256(index[2 * p], c.nibble),
+                                     _mm256_slli_epi16(_mm256_and_si256(index[2 * p + 1], c.nibble), 8));
+            rel[p] = _mm256_or_si256(_mm256_sub_epi16(row[2 * p], base16),
+                                     _mm256_slli_epi16(_mm256_sub_epi16(row[2 * p + 1], base16), 8));
             picked[p] = _mm256_shuffle_epi8(first_row, low[p]);
         }
         __m256i j = _mm256_setzero_si256();
@@ -92,30 +93,21 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
                 picked[p] = _mm256_blendv_epi8(picked[p], _mm256_shuffle_epi8(entries, low[p]),
                                                _mm256_cmpeq_epi8(rel[p], j));
         }
-        const __m256i zero = _mm256_setzero_si256();
         for (int p = 0; p < kPairs; ++p) {
-            scale[2 * p] = _mm256_sll_epi16(_mm256_unpacklo_epi8(picked[p], zero), c.up_shift);
-            scale[2 * p + 1] = _mm256_sll_epi16(_mm256_unpackhi_epi8(picked[p], zero), c.up_shift);
+            scale[2 * p] = _mm256_sll_epi16(_mm256_and_si256(picked[p], c.low_byte), c.up_shift);
+            scale[2 * p + 1] = _mm256_sll_epi16(_mm256_srli_epi16(picked[p], 8), c.up_shift);
         }
-    };
-    auto rows_from = [&](int base, __m256i (&rel)[kPairs]) FG_INLINE_LAMBDA {
-        const __m256i base8 = _mm256_set1_epi8(char(base));
-        for (int p = 0; p < kPairs; ++p) rel[p] = _mm256_sub_epi8(packed_rows[p], base8);
     };
     // The common case, all in the three rows around the first sample's (a cheaper test than
     // the span's), takes a fixed three rows: no loop whose count changes from step to step.
     {
         const int row0 = (_mm256_cvtsi256_si32(index[0]) & 0xFFFF) >> 4;
-        __m256i rel[kPairs];
-        rows_from(row0 - 1, rel);  // wraps below 0
-        __m256i top = rel[0];
-        for (int p = 1; p < kPairs; ++p) top = _mm256_max_epu8(top, rel[p]);
-        const __m256i beyond = _mm256_subs_epu8(top, c.two8);
-        if (_mm256_testz_si256(beyond, beyond)) {
-            const int base = std::clamp(row0 - 1, 0, kLastThreeRowBase);
-            if (base != row0 - 1) rows_from(base, rel);
-            return by_rows(base, std::integral_constant<int, 3>(), rel);
-        }
+        const __m256i below = _mm256_set1_epi16(int16_t(row0 - 1));  // wraps below 0
+        __m256i top = _mm256_sub_epi16(row[0], below);
+        for (int g = 1; g < kVectors; ++g) top = _mm256_max_epu16(top, _mm256_sub_epi16(row[g], below));
+        const __m256i beyond = _mm256_subs_epu16(top, c.two);
+        if (_mm256_testz_si256(beyond, beyond))
+            return by_rows(std::clamp(row0 - 1, 0, kLastThreeRowBase), std::integral_constant<int, 3>());
     }
     __m256i lowest = row[0], highest = row[0];
     for (int g = 1; g < kVectors; ++g) {
@@ -129,16 +121,8 @@ HWY_INLINE void Scales10(const Step10Constants& c, const __m256i (&index)[kVecto
     const __m128i high_complement = _mm_xor_si128(high128, _mm_set1_epi32(-1));
     const int last = 0xFFFF - (_mm_cvtsi128_si32(_mm_minpos_epu16(high_complement)) & 0xFFFF);
     const int span = last - first + 1;
-    __m256i rel[kPairs];
-    if (span <= 3) {
-        const int base = std::min(first, kLastThreeRowBase);
-        rows_from(base, rel);
-        return by_rows(base, std::integral_constant<int, 3>(), rel);
-    }
-    if (span <= 32) {
-        rows_from(first, rel);
-        return by_rows(first, span, rel);
-    }
+    if (span <= 3) return by_rows(std::min(first, kLastThreeRowBase), std::integral_constant<int, 3>());
+    if (span <= 32) return by_rows(first, span);
     HWY_ALIGN uint16_t stored[16 * kVectors];
     HWY_ALIGN int16_t scales[16 * kVectors];
     for (int g = 0; g < kVectors; ++g) _mm256_store_si256(reinterpret_cast<__m256i*>(stored + 16 * g), index[g]);
@@ -221,12 +205,12 @@ HWY_INLINE void ForEachStep10(int width, const uint16_t* ahead, bool& skipped, L
         rest);
 }
 
-// One row of blend_luma_row at 10 bits: the samples, clamped to the table, are their own
-// indices. With kCoSited, also co_sited_luma_row of the clean samples into co_sited
-// (CoSitedLumaRowU16's arithmetic: pair sums by a multiply-add with ones, halved with rounding
-// by a rounding high multiply by 1 << 14). `rest(x)` takes the samples after the last whole
-// 32; `skipped`: a step holding a sample above 10 bits was left out, co-sited luma included;
-// `ahead`: PrefetchSourceAhead's row.
+// One row of blend_luma_row at 10 bits: the samples are their own indices. With kCoSited,
+// also co_sited_luma_row of the clean samples into co_sited (CoSitedLumaRowU16's arithmetic:
+// pair sums by a multiply-add with ones, halved with rounding by a rounding high multiply by
+// 1 << 14). `rest(x)` takes the samples after the last whole 32; `skipped`: a step holding a
+// sample above 10 bits was left out, co-sited luma included; `ahead`: PrefetchSourceAhead's
+// row.
 template <Overlap kOverlap, bool kCoSited, class Rest>
 HWY_INLINE void Luma10RowSteps(const StepConstants& fade, const Step10Constants& c, const uint16_t* src,
                                uint16_t* dst, const BlockNoiseRow& row, int width, uint16_t* co_sited,
@@ -237,7 +221,7 @@ HWY_INLINE void Luma10RowSteps(const StepConstants& fade, const Step10Constants&
             __m256i any = _mm256_setzero_si256();
             for (int g = 0; g < VectorsOf(v); ++g) {
                 v[g] = Load256(src + x + 16 * g);
-                index[g] = _mm256_min_epu16(v[g], c.last);
+                index[g] = v[g];  // within the table wherever the step is blended (AnyAbove10Bits)
                 any = _mm256_or_si256(any, v[g]);
             }
             return any;
@@ -286,7 +270,7 @@ void Luma10Rows(const uint16_t* src, uint16_t* dst, const PlaneRows& rows, const
 
 // blend_chroma_row at 10 bits with unsubsampled luma (the synthesis hands subsampled chroma
 // its shared co-sited luma rows so) for rows.count rows, row r's luma at
-// luma + r * rows.luma_stride. The index of chroma_scaling_index is the luma itself (clamped)
+// luma + r * rows.luma_stride. The index of chroma_scaling_index is the luma itself
 // or (luma * luma_mult + chroma * mult) >> 6 plus the offset, clipped: one multiply-add of
 // interleaved (luma, chroma) pairs into 32-bit lanes (it needs 19 bits), whose pack back to
 // 16 bits restores the order the in-lane interleave split. `rest(r, row, x)` blends a row's
@@ -321,7 +305,8 @@ void Chroma10Rows(const uint16_t* src, uint16_t* dst, const uint16_t* luma, cons
                     v[g] = Load256(s + x + 16 * g);
                     const __m256i lv = Load256(l + x + 16 * g);
                     any = _mm256_or_si256(any, _mm256_or_si256(v[g], lv));
-                    idx[g] = kFromLuma ? _mm256_min_epu16(lv, c.last) : merged(lv, v[g]);
+                    // (luma as the index: within the table wherever the step is blended)
+                    idx[g] = kFromLuma ? lv : merged(lv, v[g]);
                 }
                 return any;
             },
