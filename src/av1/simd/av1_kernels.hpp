@@ -33,10 +33,10 @@ namespace filmgrain::av1::simd {
 //
 // At 8 bits the grain fits a byte (-128..127): byte_blocks, where set, are the same blocks in
 // an int8 copy of the template (byte_blocks[b] + row_offset is block(b) as bytes), for the
-// kernels that read noise as bytes (the AVX-512 VBMI and the AVX2 luma rows, which then load half
-// the noise bytes and fade the seams in byte pairs). They read 64 bytes from every such row's start (its
-// block and the next block's overlap columns): the copy is padded for that. Every kernel must
-// give the same output with and without them.
+// kernels that read noise as bytes (the AVX-512 VBMI and the AVX2 luma rows, which then load
+// half the noise bytes and fade the seams in byte pairs). They read 64 bytes from every such
+// row's start (its block and the next block's overlap columns): the copy is padded for that.
+// Every kernel must give the same output with and without them.
 struct BlockNoiseRow {
     const int16_t* const* blocks = nullptr;
     std::ptrdiff_t row_offset = 0;

@@ -233,55 +233,55 @@ void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const Blo
             return Noise{_mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p)), Load128(p + 16), 1),
                          _mm256_inserti128_si256(_mm256_castsi128_si256(Load128(p + 8)), Load128(p + 24), 1)};
         };
-        auto blend_block = [&](int x, __m256i v, __m256i scale, const Noise& noise) FG_INLINE_LAMBDA {
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x),
-                                AddScaledNoise32<kClip, true>(c, scale, _mm256_unpacklo_epi8(v, zero),
-                                                              _mm256_unpackhi_epi8(v, zero), noise.low, noise.high));
+        using BlockNoise = std::conditional_t<kBytes, __m256i, Noise>;
+        // The noise of kBlocks blocks from block x / 32 on, each overlapped with its left
+        // neighbour (the row's first has none).
+        auto step_noise = [&](int x, auto blocks, BlockNoise(&n)[decltype(blocks)::value]) FG_INLINE_LAMBDA {
+            constexpr int kBlocks = decltype(blocks)::value;
+            const int b = x / 32;
+            if constexpr (kBytes) {
+                static_assert(kOverlap != Overlap::kGivenSeams);
+                for (int k = 0; k < kBlocks; ++k) {
+                    n[k] = Load256(row.byte_block(b + k));
+                    if constexpr (kOverlap == Overlap::kFade)
+                        if (k > 0 || x > 0) n[k] = FadedByteNoise32(row.byte_block(b + k - 1), n[k], c);
+                }
+            } else {
+                for (int k = 0; k < kBlocks; ++k) n[k] = noise_at(x + 32 * k);
+                if constexpr (kOverlap == Overlap::kFade && kBlocks == 2) {
+                    FadeFirstPairs<2>({&n[0].low, &n[1].low}, {row.block(b > 0 ? b - 1 : 0), row.block(b)}, 32,
+                                      x == 0, c);
+                } else {
+                    for (int k = 0; k < kBlocks; ++k)
+                        n[k].low = OverlapFirstPair<kOverlap, 32>(n[k].low, row, b + k, x + 32 * k, c);
+                }
+            }
         };
-        auto blend_byte_block = [&](int x, __m256i v, __m256i scale, __m256i noise) FG_INLINE_LAMBDA {
-            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x), AddByteNoise32<kClip>(c, v, scale, noise));
+        auto blend_block = [&](int x, __m256i v, __m256i scale, const BlockNoise& noise) FG_INLINE_LAMBDA {
+            __m256i out;
+            if constexpr (kBytes)
+                out = AddByteNoise32<kClip>(c, v, scale, noise);
+            else
+                out = AddScaledNoise32<kClip, true>(c, scale, _mm256_unpacklo_epi8(v, zero),
+                                                    _mm256_unpackhi_epi8(v, zero), noise.low, noise.high);
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + x), out);
         };
         ForEachStep(
             width, width,
             [&](int x, auto samples) FG_INLINE_LAMBDA {
+                constexpr int kBlocks = decltype(samples)::value / 32;
+                BlockNoise n[kBlocks];
                 const __m256i v = Load256(s + x);
-                const int b = x / 32;
-                if constexpr (kBytes) {
-                    static_assert(kOverlap != Overlap::kGivenSeams);
-                    __m256i nv = Load256(row.byte_block(b));
-                    if constexpr (kOverlap == Overlap::kFade)
-                        if (x > 0) nv = FadedByteNoise32(row.byte_block(b - 1), nv, c);
-                    if constexpr (decltype(samples)::value == 64) {
-                        const __m256i w = Load256(s + x + 32);  // before the first store: in place
-                        __m256i nw = Load256(row.byte_block(b + 1));
-                        if constexpr (kOverlap == Overlap::kFade) nw = FadedByteNoise32(row.byte_block(b), nw, c);
-                        __m256i scale_v, scale_w;
-                        LookUp64(c, v, w, scale_v, scale_w);
-                        blend_byte_block(x, v, scale_v, nv);
-                        blend_byte_block(x + 32, w, scale_w, nw);
-                    } else {
-                        blend_byte_block(x, v, LookUp32(c, v), nv);
-                    }
-                    return;
-                }
-                Noise nv = noise_at(x);
-                if constexpr (decltype(samples)::value == 64) {
+                if constexpr (kBlocks == 2) {
                     const __m256i w = Load256(s + x + 32);  // before the first store: in place
-                    Noise nw = noise_at(x + 32);
-                    if constexpr (kOverlap == Overlap::kFade) {
-                        FadeFirstPairs<2>({&nv.low, &nw.low}, {row.block(b > 0 ? b - 1 : 0), row.block(b)}, 32, x == 0,
-                                          c);
-                    } else {
-                        nv.low = OverlapFirstPair<kOverlap, 32>(nv.low, row, b, x, c);
-                        nw.low = OverlapFirstPair<kOverlap, 32>(nw.low, row, b + 1, x + 32, c);
-                    }
+                    step_noise(x, std::integral_constant<int, 2>(), n);
                     __m256i scale_v, scale_w;
                     LookUp64(c, v, w, scale_v, scale_w);
-                    blend_block(x, v, scale_v, nv);
-                    blend_block(x + 32, w, scale_w, nw);
+                    blend_block(x, v, scale_v, n[0]);
+                    blend_block(x + 32, w, scale_w, n[1]);
                 } else {
-                    nv.low = OverlapFirstPair<kOverlap, 32>(nv.low, row, b, x, c);
-                    blend_block(x, v, LookUp32(c, v), nv);
+                    step_noise(x, std::integral_constant<int, 1>(), n);
+                    blend_block(x, v, LookUp32(c, v), n[0]);
                 }
             },
             [&](int x) { rest(r, row, x); });
