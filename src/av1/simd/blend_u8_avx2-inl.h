@@ -236,8 +236,7 @@ void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const Blo
         using BlockNoise = std::conditional_t<kBytes, __m256i, Noise>;
         // The noise of kBlocks blocks from block x / 32 on, each overlapped with its left
         // neighbour (the row's first has none).
-        auto step_noise = [&](int x, auto blocks, BlockNoise(&n)[decltype(blocks)::value]) FG_INLINE_LAMBDA {
-            constexpr int kBlocks = decltype(blocks)::value;
+        auto step_noise = [&]<int kBlocks>(int x, BlockNoise(&n)[kBlocks]) FG_INLINE_LAMBDA {
             const int b = x / 32;
             if constexpr (kBytes) {
                 static_assert(kOverlap != Overlap::kGivenSeams);
@@ -274,13 +273,13 @@ void LumaRows(const uint8_t* src, uint8_t* dst, const PlaneRows& rows, const Blo
                 const __m256i v = Load256(s + x);
                 if constexpr (kBlocks == 2) {
                     const __m256i w = Load256(s + x + 32);  // before the first store: in place
-                    step_noise(x, std::integral_constant<int, 2>(), n);
+                    step_noise(x, n);
                     __m256i scale_v, scale_w;
                     LookUp64(c, v, w, scale_v, scale_w);
                     blend_block(x, v, scale_v, n[0]);
                     blend_block(x + 32, w, scale_w, n[1]);
                 } else {
-                    step_noise(x, std::integral_constant<int, 1>(), n);
+                    step_noise(x, n);
                     blend_block(x, v, LookUp32(c, v), n[0]);
                 }
             },
